@@ -1,0 +1,182 @@
+#include "context.hpp"
+
+#include <cstdio>
+#include <new>
+
+namespace tressvk {
+
+namespace {
+std::string vformat(const char* format, va_list args) {
+  va_list copy;
+  va_copy(copy, args);
+  const int n = std::vsnprintf(nullptr, 0, format, copy);
+  va_end(copy);
+  std::string s(n > 0 ? static_cast<size_t>(n) : 0, '\0');
+  if (n > 0) std::vsnprintf(s.data(), s.size() + 1, format, args);
+  return s;
+}
+}  // namespace
+
+TvkResult Context::fail(TvkResult result, const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  last_error = vformat(format, args);
+  va_end(args);
+  if (info.message_callback) info.message_callback(TVK_MESSAGE_ERROR, last_error.c_str(), info.message_user_data);
+  return result;
+}
+
+void Context::message(TvkMessageSeverity severity, const char* format, ...) {
+  if (!info.message_callback) return;
+  va_list args;
+  va_start(args, format);
+  const std::string text = vformat(format, args);
+  va_end(args);
+  info.message_callback(severity, text.c_str(), info.message_user_data);
+}
+
+TvkResult Context::check(VkResult vr, const char* what) {
+  if (vr == VK_SUCCESS) return TVK_SUCCESS;
+  if (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    return fail(TVK_ERROR_OUT_OF_MEMORY, "%s failed: %s", what, vk_result_name(vr));
+  return fail(TVK_ERROR_VULKAN, "%s failed: %s", what, vk_result_name(vr));
+}
+
+const char* vk_result_name(VkResult result) {
+  switch (result) {
+#define TVK_CASE(x) case x: return #x
+    TVK_CASE(VK_SUCCESS);
+    TVK_CASE(VK_NOT_READY);
+    TVK_CASE(VK_TIMEOUT);
+    TVK_CASE(VK_INCOMPLETE);
+    TVK_CASE(VK_ERROR_OUT_OF_HOST_MEMORY);
+    TVK_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    TVK_CASE(VK_ERROR_INITIALIZATION_FAILED);
+    TVK_CASE(VK_ERROR_DEVICE_LOST);
+    TVK_CASE(VK_ERROR_MEMORY_MAP_FAILED);
+    TVK_CASE(VK_ERROR_LAYER_NOT_PRESENT);
+    TVK_CASE(VK_ERROR_EXTENSION_NOT_PRESENT);
+    TVK_CASE(VK_ERROR_FEATURE_NOT_PRESENT);
+    TVK_CASE(VK_ERROR_INCOMPATIBLE_DRIVER);
+    TVK_CASE(VK_ERROR_TOO_MANY_OBJECTS);
+    TVK_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED);
+#undef TVK_CASE
+    default: return "VkResult error";
+  }
+}
+
+}  // namespace tressvk
+
+using tressvk::Context;
+
+extern "C" {
+
+uint32_t tressvk_version(void) { return TVK_VERSION_NUM; }
+
+TvkResult tressvk_check_version(uint32_t header_version_num, size_t context_create_info_size) {
+  if (header_version_num / 100 != TVK_VERSION_NUM / 100) return TVK_ERROR_VERSION_MISMATCH;
+  if (context_create_info_size != sizeof(TvkContextCreateInfo)) return TVK_ERROR_VERSION_MISMATCH;
+  return TVK_SUCCESS;
+}
+
+const char* tressvk_result_string(TvkResult result) {
+  switch (result) {
+    case TVK_SUCCESS: return "success";
+    case TVK_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case TVK_ERROR_VULKAN: return "Vulkan error";
+    case TVK_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case TVK_ERROR_INVALID_ASSET: return "invalid asset";
+    case TVK_ERROR_IO: return "I/O error";
+    case TVK_ERROR_MISSING_FEATURE: return "missing device feature";
+    case TVK_ERROR_VERSION_MISMATCH: return "version mismatch";
+  }
+  return "unknown result";
+}
+
+void tressvk_get_device_requirements(TvkDeviceRequirements* out) {
+  if (!out) return;
+  *out = TvkDeviceRequirements{};
+  out->min_api_version = VK_API_VERSION_1_3;
+  out->extension_count = 0;
+  out->extensions = nullptr;
+  out->synchronization2 = VK_TRUE;
+  out->dynamic_rendering = VK_TRUE;
+}
+
+TvkResult tressvk_create_context(const TvkContextCreateInfo* info, TvkContext* out_context) {
+  if (!out_context) return TVK_ERROR_INVALID_ARGUMENT;
+  *out_context = nullptr;
+  if (!info || info->struct_size != sizeof(TvkContextCreateInfo) || !info->instance || !info->physical_device ||
+      !info->device || !info->get_instance_proc_addr)
+    return TVK_ERROR_INVALID_ARGUMENT;
+  if (info->api_version < VK_API_VERSION_1_3) {
+    if (info->message_callback)
+      info->message_callback(TVK_MESSAGE_ERROR, "TressVK needs a Vulkan 1.3 instance and device (api_version)",
+                             info->message_user_data);
+    return TVK_ERROR_MISSING_FEATURE;
+  }
+
+  TvkContext_T* ctx = new (std::nothrow) TvkContext_T();
+  if (!ctx) return TVK_ERROR_OUT_OF_MEMORY;
+  ctx->info = *info;
+  ctx->frames_in_flight = info->frames_in_flight ? info->frames_in_flight : 2;
+
+  // Our own copy of volk lives inside this shared library (hidden visibility), so these calls fill TressVK's
+  // private globals and table, never the host's.
+  volkInitializeCustom(info->get_instance_proc_addr);
+  volkLoadInstanceOnly(info->instance);
+  volkLoadDeviceTable(&ctx->vk, info->device);
+  ctx->get_physical_device_properties = vkGetPhysicalDeviceProperties;
+  ctx->get_physical_device_properties(info->physical_device, &ctx->device_properties);
+  if (ctx->device_properties.apiVersion < VK_API_VERSION_1_3) {
+    const TvkResult r = ctx->fail(TVK_ERROR_MISSING_FEATURE, "device '%s' supports Vulkan %u.%u; TressVK needs 1.3",
+                                  ctx->device_properties.deviceName, VK_API_VERSION_MAJOR(ctx->device_properties.apiVersion),
+                                  VK_API_VERSION_MINOR(ctx->device_properties.apiVersion));
+    delete ctx;
+    return r;
+  }
+
+  VmaVulkanFunctions functions{};
+  functions.vkGetInstanceProcAddr = info->get_instance_proc_addr;
+  functions.vkGetDeviceProcAddr = vkGetDeviceProcAddr;
+  VmaAllocatorCreateInfo aci{};
+  aci.physicalDevice = info->physical_device;
+  aci.device = info->device;
+  aci.instance = info->instance;
+  aci.vulkanApiVersion = VK_API_VERSION_1_3;
+  aci.pAllocationCallbacks = info->allocator;
+  aci.pVulkanFunctions = &functions;
+  if (const TvkResult r = ctx->check(vmaCreateAllocator(&aci, &ctx->allocator), "vmaCreateAllocator");
+      r != TVK_SUCCESS) {
+    delete ctx;
+    return r;
+  }
+  ctx->message(TVK_MESSAGE_INFO, "TressVK %d.%d.%d context on '%s'", TVK_VERSION_MAJOR, TVK_VERSION_MINOR,
+               TVK_VERSION_PATCH, ctx->device_properties.deviceName);
+  *out_context = ctx;
+  return TVK_SUCCESS;
+}
+
+void tressvk_destroy_context(TvkContext context) {
+  TvkContext_T* ctx = context;
+  if (!ctx) return;
+  if (ctx->allocator) vmaDestroyAllocator(ctx->allocator);
+  delete ctx;
+}
+
+TvkResult tressvk_get_memory_usage(TvkContext context, TvkMemoryUsage* out_usage) {
+  TvkContext_T* ctx = context;
+  if (!ctx || !out_usage) return TVK_ERROR_INVALID_ARGUMENT;
+  VmaTotalStatistics stats{};
+  vmaCalculateStatistics(ctx->allocator, &stats);
+  out_usage->device_bytes = stats.total.statistics.allocationBytes;
+  out_usage->allocation_count = stats.total.statistics.allocationCount;
+  return TVK_SUCCESS;
+}
+
+const char* tressvk_last_error(TvkContext context) {
+  TvkContext_T* ctx = context;
+  return ctx ? ctx->last_error.c_str() : "";
+}
+
+}  // extern "C"
