@@ -68,6 +68,10 @@ struct HairAsset {
   std::vector<StrandGroup> groups;                    // at least one
   std::vector<std::string> bone_names;                // empty when no bones
 
+  // How the asset was baked (tool options as a small deterministic JSON object), for `tressvk-bake info`.
+  // Informational only: nothing at runtime depends on it. Empty when unknown.
+  std::string bake_settings;
+
   uint32_t guide_count() const {
     return vertices_per_strand ? static_cast<uint32_t>(rest_positions.size() / vertices_per_strand) : 0;
   }

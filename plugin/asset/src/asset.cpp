@@ -1,1 +1,0 @@
-#include <tressvk/asset.hpp>
