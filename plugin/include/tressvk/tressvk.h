@@ -26,6 +26,8 @@
 #endif
 #include <vulkan/vulkan.h>
 
+#include "tressvk/sim_types.h"
+
 #if defined(_WIN32)
 #if defined(TRESSVK_BUILDING_LIBRARY)
 #define TVK_API __declspec(dllexport)

@@ -1,0 +1,141 @@
+/* TressVK simulation parameters: the public, plain-C types that describe how hair moves.
+ *
+ * Included by tressvk.h; usable on its own (it needs only <stdint.h>). Plain old data, no functions: every struct
+ * has a TVK_*_DEFAULT_INIT initialiser listing its documented defaults, so a C host writes
+ *     TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
+ * and changes what it needs. The CPU reference (tressvk::reference) and the GPU passes read the same structs.
+ * docs/simulation.md explains the model each field drives.
+ *
+ * Units: metres, seconds, radians, kilograms never (the model is mass-free). "Simulation space" is world-oriented
+ * (gravity and wind are world vectors) with its origin at the instance, so distance from the world origin never
+ * costs precision. Fields documented as "per step" are converted by TressVK from the per-second values given
+ * here with the fixed simulation step h; hosts never see h-dependent numbers.
+ */
+#ifndef TRESSVK_SIM_TYPES_H
+#define TRESSVK_SIM_TYPES_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Hard limits of the GPU layout (shaders/sim/layout.glsl). */
+#define TVK_MAX_CAPSULES 8          /* capsules per instance */
+#define TVK_MAX_STEPS_PER_FRAME 8   /* upper bound for TvkTimeSettings::max_steps_per_frame */
+#define TVK_MAX_ITERATIONS 32       /* upper bound for local_iterations and length_iterations */
+
+/* Per strand group (an asset has one or more groups, e.g. "mohawk", "fur"). Stiffnesses are per-iteration
+ * fractions as in TressFX, not moduli; with the fixed step (TvkTimeSettings) they do not depend on frame rate. */
+typedef struct TvkSimParams {
+  float damping;            /* velocity loss; each step keeps exp(-damping * h * 60) of the velocity (TressFX 4.1
+                               semantics: 0 = none, 1 = heavy). Dimensionless. Default 0.08 */
+  float global_stiffness;   /* 0..1: per step, pull this fraction of the way toward the skinned rest pose.
+                               Default 0.15 */
+  float global_range;       /* 0..1: fraction of the strand's rest arc length, from the root, that global shape
+                               acts on. Default 0.3 */
+  float local_stiffness;    /* 0..1: keeps each segment's rest direction relative to its parent's frame; applied
+                               as 0.5 * min(local_stiffness, 0.95) per iteration. 0 = no local-shape pass.
+                               Default 0.9 */
+  uint32_t local_iterations;  /* 0..TVK_MAX_ITERATIONS sweeps of local shape per step, honoured for every vertex
+                               count. 0 = no local-shape pass. Default 2 */
+  uint32_t length_iterations; /* 1..TVK_MAX_ITERATIONS root-to-tip length-constraint sweeps per step. Default 4 */
+  float vsp_coefficient;    /* 0..1: velocity shock propagation, the fraction of the root segment's rigid motion
+                               of this step given to the whole strand. 0 = no VSP pass. Default 0.8 */
+  float vsp_threshold;      /* m/s^2: root-segment acceleration above which the coefficient becomes 1 (ramping up
+                               from 0.75x this value). Converted to a per-step length a*h^2. Default 100 */
+  float max_speed;          /* m/s: a real velocity clamp (a vertex moves at most max_speed * h per step). Measured
+                               in simulation space, i.e. world velocity. 0 = off. Default 50 */
+  float tip_separation;     /* >= 0: follow hairs spread from their guide by (1 + tip_separation * t), t = 0 at the
+                               root and 1 at the tip. Negative = use the value baked into the asset. Default -1 */
+} TvkSimParams;
+
+#define TVK_SIM_PARAMS_DEFAULT_INIT \
+  { 0.08f, 0.15f, 0.3f, 0.9f, 2u, 4u, 0.8f, 100.0f, 50.0f, -1.0f }
+
+/* Wind: a world-space acceleration acting on each segment perpendicular to it (so it bends hair, never
+ * stretches it), pointing WITH `direction`, spread over a cone so neighbouring strands differ, and gusting as
+ *   strength * (1 + gust_amplitude * sin(2 pi gust_frequency t)).
+ * Independent of segment length and units (unlike TressFX's |e|^2 displacement). strength 0 = no wind pass term. */
+typedef struct TvkWind {
+  float direction[3];       /* world direction (need not be unit; zero = no wind). Default (1, 0, 0) */
+  float strength;           /* m/s^2, mean perpendicular acceleration. 0 = off. Default 0 */
+  float gust_amplitude;     /* 0..1 fraction of strength. Default 0.5 */
+  float gust_frequency;     /* Hz. Default 0.5 */
+  float cone_angle;         /* radians, half-angle of the spread of directions across strands. Default 0.35 */
+} TvkWind;
+
+#define TVK_WIND_DEFAULT_INIT { { 1.0f, 0.0f, 0.0f }, 0.0f, 0.5f, 0.5f, 0.35f }
+
+/* A tapered capsule in the instance's space (moves with the instance's rigid transform): the swept sphere from
+ * (p0, r0) to (p1, r1), radius interpolated linearly along the axis. Pinned vertices are never moved; a contact
+ * removes only the velocity into the surface (tangential motion slides). */
+typedef struct TvkCapsule {
+  float p0[3];              /* m, instance space */
+  float r0;                 /* m, >= 0 */
+  float p1[3];              /* m, instance space (p1 == p0 makes a sphere) */
+  float r1;                 /* m, >= 0 */
+} TvkCapsule;
+
+/* Time policy: a fixed step with an accumulator. Each frame adds its dt; whole steps of 1/step_rate run, at most
+ * max_steps_per_frame of them; when the cap is hit, the rest of that frame's time is dropped (a 0.25 s hitch
+ * costs one frame of slow motion, never an explosion and never a catch-up spiral). The head motion of the frame
+ * is interpolated across its steps. A frame shorter than one step runs no step and carries its motion over. */
+typedef struct TvkTimeSettings {
+  float step_rate;          /* Hz, 30..480. Default 120 (2 steps at 60 fps: root motion is resolved twice per
+                               frame, gravity moves a vertex < 1 mm per step, and 30/60/120/144 fps hosts all
+                               simulate on the same time grid) */
+  uint32_t max_steps_per_frame; /* 1..TVK_MAX_STEPS_PER_FRAME. Default 4 (a 30 fps frame still runs in full) */
+} TvkTimeSettings;
+
+#define TVK_TIME_SETTINGS_DEFAULT_INIT { 120.0f, 4u }
+
+/* An instance's rigid placement in the world: world = translation + rotation * instance_point. Double precision
+ * so a character far from the origin keeps full precision: TressVK subtracts the translation in double and the
+ * GPU only ever sees groom-sized numbers. */
+typedef struct TvkInstanceTransform {
+  double translation[3];    /* m, world. Default (0, 0, 0) */
+  double rotation[4];       /* unit quaternion (x, y, z, w), instance -> world. Default (0, 0, 0, 1) */
+} TvkInstanceTransform;
+
+#define TVK_INSTANCE_TRANSFORM_DEFAULT_INIT { { 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0, 1.0 } }
+
+/* A bone's current transform relative to the instance, mapping the asset's bind space to instance space:
+ * instance_point = rows * (bind_point, 1). Row-major 3x4; the 3x3 part must be a rotation (no scale or shear).
+ * Strands blend up to 4 bones with the asset's per-strand weights (the root's weights drive the whole strand). */
+typedef struct TvkBoneMatrix {
+  float rows[3][4];
+} TvkBoneMatrix;
+
+#define TVK_BONE_MATRIX_IDENTITY_INIT { { { 1.0f, 0.0f, 0.0f, 0.0f }, { 0.0f, 1.0f, 0.0f, 0.0f }, \
+                                          { 0.0f, 0.0f, 1.0f, 0.0f } } }
+
+/* Per instance, per frame: everything the simulation of one frame needs besides per-group TvkSimParams. */
+typedef struct TvkSimFrame {
+  float dt;                      /* s, this frame's duration (>= 0; 0 = nothing advances) */
+  TvkInstanceTransform transform;/* where the instance is at the end of this frame */
+  const TvkBoneMatrix* bones;    /* NULL = rigid: every strand follows `transform` alone. Otherwise one matrix per
+                                    asset bone (HairAsset::bone_names order) at the end of this frame */
+  uint32_t bone_count;           /* entries in `bones` (must equal the asset's bone count when bones != NULL) */
+  uint32_t teleport;             /* 1 = the instance jumped (cut, respawn): the hair is moved rigidly with it,
+                                    current and previous state alike, so the jump adds no velocity. Default 0 */
+  uint32_t reset;                /* 1 = put every strand back to its skinned rest pose, at rest. Default 0 (the
+                                    first frame of an instance always resets) */
+  uint32_t capsule_count;        /* 0..TVK_MAX_CAPSULES; 0 = no collision pass term */
+  TvkCapsule capsules[TVK_MAX_CAPSULES];
+  TvkWind wind;
+} TvkSimFrame;
+
+/* Per instance, fixed for the instance's life (changing them is allowed between frames). */
+typedef struct TvkSimSettings {
+  float gravity[3];              /* m/s^2, world. Default (0, -9.81, 0) */
+  TvkTimeSettings time;
+} TvkSimSettings;
+
+#define TVK_SIM_SETTINGS_DEFAULT_INIT { { 0.0f, -9.81f, 0.0f }, TVK_TIME_SETTINGS_DEFAULT_INIT }
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TRESSVK_SIM_TYPES_H */
