@@ -1,0 +1,296 @@
+// The bake pipeline (see bake.hpp for the steps and asset.hpp for the conventions it produces).
+#include "vec_math.hpp"
+
+#include <tressvk/baker/bake.hpp>
+#include <tressvk/baker/errors.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+namespace tressvk::baker {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+Vec3 convert(const Vec3& p, const BakeOptions& o) {
+  const double s = o.units_to_metres * o.scale;
+  // Z-up to Y-up is a rotation of -90 degrees about X (right-handed stays right-handed): (x, y, z) -> (x, z, -y).
+  if (o.up == UpAxis::kZ) return {p[0] * s, p[2] * s, -p[1] * s};
+  return p * s;
+}
+
+struct ResampleError {
+  double max = 0.0;
+  double sum_sq = 0.0;
+};
+
+// Resamples a polyline to n vertices evenly spaced in arc length. `cum` holds the cumulative arc length.
+void resample(const std::vector<Vec3>& pts, const std::vector<double>& cum, uint32_t n, std::vector<Vec3>& out,
+              ResampleError& err) {
+  out.resize(n);
+  const double total = cum.back();
+  size_t seg = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const double s = total * i / (n - 1);
+    while (seg + 2 < pts.size() && cum[seg + 1] < s) ++seg;
+    const double span = cum[seg + 1] - cum[seg];
+    const double t = span > 0 ? std::clamp((s - cum[seg]) / span, 0.0, 1.0) : 0.0;
+    out[i] = pts[seg] + (pts[seg + 1] - pts[seg]) * t;
+  }
+  out.front() = pts.front();  // exact root and tip, whatever the rounding of s
+  out.back() = pts.back();
+  // Error: each input vertex against the resampled polyline at the same arc length.
+  const double step = total / (n - 1);
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const double u = cum[k] / step;
+    const auto j = std::min<size_t>(static_cast<size_t>(u), n - 2);
+    const double t = std::clamp(u - static_cast<double>(j), 0.0, 1.0);
+    const Vec3 q = out[j] + (out[j + 1] - out[j]) * t;
+    const double d = length(q - pts[k]);
+    err.max = std::max(err.max, d);
+    err.sum_sq += d * d;
+  }
+}
+
+// Rest frames and rest edges exactly as documented in asset.hpp, from the positions the runtime will see.
+void rest_frames(const std::vector<Vec3>& p, std::vector<Quat>& frames, std::vector<Vec3>& edges) {
+  const size_t n = p.size();
+  frames.resize(n);
+  edges.assign(n, Vec3{0, 0, 0});
+  const Vec3 x = normalized(p[1] - p[0]);
+  // The asset axis least aligned with x (ties: X, then Y, then Z).
+  size_t axis = 0;
+  for (size_t k = 1; k < 3; ++k)
+    if (std::abs(x[k]) < std::abs(x[axis])) axis = k;
+  Vec3 a{0, 0, 0};
+  a[axis] = 1.0;
+  const Vec3 y = normalized(a - x * dot(a, x));
+  const Vec3 z = cross(x, y);
+  frames[0] = quat_from_axes(x, y, z);
+  Vec3 prev_dir = x;
+  for (size_t v = 1; v < n; ++v) {
+    const Vec3 e = p[v] - p[v - 1];
+    const double len = length(e);
+    // A zero-length edge (possible only after float rounding of a hairpin) keeps the previous frame.
+    if (len > 0) {
+      const Vec3 dir = e * (1.0 / len);
+      frames[v] = normalized(rotation_between(prev_dir, dir) * frames[v - 1]);
+      prev_dir = dir;
+    } else {
+      frames[v] = frames[v - 1];
+    }
+  }
+  for (size_t v = 0; v + 1 < n; ++v) edges[v] = rotate(conjugate(frames[v]), p[v + 1] - p[v]);
+}
+
+std::array<float, 4> to_float4(const Quat& q) {
+  return {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z), static_cast<float>(q.w)};
+}
+
+}  // namespace
+
+std::string bake_settings_json(const BakeOptions& o) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "{\"vertices\":%u,\"pin\":%u,\"follow\":%u,\"follow_radius\":%.9g,\"tip_separation\":%.9g,"
+                "\"seed\":%llu,\"units_to_metres\":%.9g,\"scale\":%.9g,\"up\":\"%s\",\"shuffle\":%s}",
+                o.vertices_per_strand, o.pin, o.follow_per_guide, o.follow_radius, double{o.tip_separation},
+                static_cast<unsigned long long>(o.seed), o.units_to_metres, o.scale, o.up == UpAxis::kZ ? "z" : "y",
+                o.shuffle ? "true" : "false");
+  return buf;
+}
+
+asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* report_out) {
+  const uint32_t n = o.vertices_per_strand;
+  if (n < asset::kMinVerticesPerStrand || n > asset::kMaxVerticesPerStrand)
+    throw InputError("--vertices " + std::to_string(n) + " is outside 4..128");
+  if (!(o.units_to_metres > 0) || !(o.scale > 0) || !std::isfinite(o.scale))
+    throw InputError("--scale must be a positive finite number");
+  if (!std::isfinite(o.tip_separation) || o.tip_separation < 0)
+    throw InputError("--tip-separation must be a finite number >= 0");
+  if (o.follow_per_guide > 64) throw InputError("--follow " + std::to_string(o.follow_per_guide) + " exceeds 64");
+  BakeReport rep;
+  rep.input_strands = groom.strand_count() + groom.skipped_invalid;
+  rep.input_vertices = groom.input_vertices ? groom.input_vertices : groom.points.size();
+  rep.skipped_invalid = groom.skipped_invalid;
+  rep.bone_influences_dropped = groom.bone_influences_dropped;
+
+  // 1. Units and axes first, so every threshold below is in metres of the final asset.
+  std::vector<Vec3> pts(groom.points.size());
+  for (size_t i = 0; i < pts.size(); ++i) pts[i] = convert(groom.points[i], o);
+  const size_t strands = groom.strand_count();
+
+  // 2. Scale-aware tolerances from the groom itself.
+  {
+    std::vector<double> seg;
+    seg.reserve(pts.size());
+    for (size_t s = 0; s < strands; ++s)
+      for (uint32_t i = groom.strand_begin[s] + 1; i < groom.strand_begin[s + 1]; ++i) {
+        const double l = length(pts[i] - pts[i - 1]);
+        if (l > 0) seg.push_back(l);
+      }
+    rep.median_segment_length = median(std::move(seg));
+  }
+  rep.merge_tolerance = o.merge_fraction * rep.median_segment_length;
+
+  // 3. Merge repeated vertices and sub-tolerance segments, strand by strand (root and tip are kept).
+  std::vector<std::vector<Vec3>> cleaned(strands);
+  std::vector<double> strand_length(strands, 0.0);
+  for (size_t s = 0; s < strands; ++s) {
+    auto& c = cleaned[s];
+    const uint32_t b = groom.strand_begin[s], e = groom.strand_begin[s + 1];
+    c.reserve(e - b);
+    for (uint32_t i = b; i < e; ++i) {
+      if (!c.empty() && length(pts[i] - c.back()) <= rep.merge_tolerance) {
+        ++rep.merged_vertices;
+        if (i + 1 == e && c.size() > 1) c.back() = pts[i];  // keep the real tip rather than the merged vertex
+        continue;
+      }
+      c.push_back(pts[i]);
+    }
+    for (size_t i = 1; i < c.size(); ++i) strand_length[s] += length(c[i] - c[i - 1]);
+  }
+  {
+    std::vector<double> lengths;
+    for (size_t s = 0; s < strands; ++s)
+      if (cleaned[s].size() >= 2) lengths.push_back(strand_length[s]);
+    rep.median_strand_length = median(std::move(lengths));
+  }
+  rep.min_strand_length = o.min_length_fraction * rep.median_strand_length;
+
+  // 4. Keep strands that are long enough.
+  std::vector<uint32_t> kept;
+  for (size_t s = 0; s < strands; ++s) {
+    if (cleaned[s].size() < 2 || strand_length[s] < rep.min_strand_length || !(strand_length[s] > 0)) {
+      ++rep.dropped_short;
+      continue;
+    }
+    kept.push_back(static_cast<uint32_t>(s));
+  }
+  if (kept.empty()) throw InputError("no strand is left to bake (all " + std::to_string(strands) +
+                                     " strands are degenerate or shorter than the length threshold)");
+  if (kept.size() > (uint64_t{1} << 31) / n) throw InputError("too many strands for one asset");
+
+  // 5. Level-of-detail order: a seeded Fisher-Yates shuffle of the kept strands.
+  Random rng(o.seed ^ 0x5F3759DFull);
+  if (o.shuffle)
+    for (size_t i = kept.size(); i > 1; --i) std::swap(kept[i - 1], kept[rng.below(i)]);
+
+  // 6. Resample (double), then the origin from the resampled bounds, rounded to a whole millimetre.
+  const size_t g = kept.size();
+  std::vector<Vec3> resampled(g * n);
+  std::vector<double> cum;
+  std::vector<Vec3> tmp;
+  ResampleError err;
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  uint64_t error_samples = 0;
+  for (size_t k = 0; k < g; ++k) {
+    const auto& c = cleaned[kept[k]];
+    cum.assign(c.size(), 0.0);
+    for (size_t i = 1; i < c.size(); ++i) cum[i] = cum[i - 1] + length(c[i] - c[i - 1]);
+    ResampleError e;
+    resample(c, cum, n, tmp, e);
+    err.max = std::max(err.max, e.max);
+    err.sum_sq += e.sum_sq;
+    error_samples += c.size();
+    rep.max_relative_resample_error = std::max(rep.max_relative_resample_error, e.max / cum.back());
+    for (uint32_t v = 0; v < n; ++v) {
+      resampled[k * n + v] = tmp[v];
+      for (size_t a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], tmp[v][a]);
+        hi[a] = std::max(hi[a], tmp[v][a]);
+      }
+    }
+  }
+  rep.max_resample_error = err.max;
+  rep.rms_resample_error = error_samples ? std::sqrt(err.sum_sq / static_cast<double>(error_samples)) : 0.0;
+
+  asset::HairAsset a;
+  a.vertices_per_strand = n;
+  a.follow_per_guide = o.follow_per_guide;
+  a.tip_separation = o.tip_separation;
+  for (size_t k = 0; k < 3; ++k) a.origin[k] = std::round((lo[k] + hi[k]) * 0.5 * 1000.0) / 1000.0 + 0.0;  // + 0.0: no negative zero
+  a.bake_settings = bake_settings_json(o);
+
+  // 7. Per-vertex data, computed from the float32 positions the runtime will actually see.
+  a.rest_positions.resize(g * n);
+  a.rest_lengths.resize(g * n);
+  a.rest_frames.resize(g * n);
+  a.rest_edge_local.resize(g * n);
+  std::vector<Vec3> p(n);
+  std::vector<Quat> frames;
+  std::vector<Vec3> edges;
+  const uint32_t pin = std::min(o.pin, n);
+  for (size_t k = 0; k < g; ++k) {
+    const bool pin_tip = groom.strand_pin_tip[kept[k]] != 0;
+    for (uint32_t v = 0; v < n; ++v) {
+      const Vec3 rel = resampled[k * n + v] - Vec3{a.origin[0], a.origin[1], a.origin[2]};
+      const std::array<float, 3> f{static_cast<float>(rel[0]), static_cast<float>(rel[1]), static_cast<float>(rel[2])};
+      p[v] = {f[0], f[1], f[2]};
+      const bool pinned = v < pin || (pin_tip && v + pin >= n);
+      a.rest_positions[k * n + v] = {f[0], f[1], f[2], pinned ? 0.0f : 1.0f};
+    }
+    rest_frames(p, frames, edges);
+    for (uint32_t v = 0; v < n; ++v) {
+      a.rest_lengths[k * n + v] = v + 1 < n ? static_cast<float>(length(p[v + 1] - p[v])) : 0.0f;
+      a.rest_frames[k * n + v] = to_float4(frames[v]);
+      a.rest_edge_local[k * n + v] = {static_cast<float>(edges[v][0]), static_cast<float>(edges[v][1]),
+                                       static_cast<float>(edges[v][2]), 0.0f};
+    }
+  }
+
+  // 8. Groups: only those still used, in first-use order of the original group list.
+  std::vector<int> group_map(groom.group_names.size(), -1);
+  std::vector<bool> used(groom.group_names.size(), false);
+  for (uint32_t s : kept) used[groom.strand_group[s]] = true;
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (!used[i]) continue;
+    group_map[i] = static_cast<int>(a.groups.size());
+    std::string name = groom.group_names[i].empty() ? "hair" : groom.group_names[i];
+    // Names must be unique in an asset; OBJ files can repeat a `g` name for unrelated objects.
+    std::string unique = name;
+    for (int suffix = 2; std::any_of(a.groups.begin(), a.groups.end(), [&](const auto& x) { return x.name == unique; });
+         ++suffix)
+      unique = name + "#" + std::to_string(suffix);
+    a.groups.push_back({unique});
+  }
+  if (a.groups.size() > 65535) throw InputError("more than 65535 strand groups");
+  a.guide_group.resize(g);
+  for (size_t k = 0; k < g; ++k) a.guide_group[k] = static_cast<uint16_t>(group_map[groom.strand_group[kept[k]]]);
+
+  if (!groom.strand_uv.empty()) {
+    a.root_uv.resize(g);
+    for (size_t k = 0; k < g; ++k) a.root_uv[k] = groom.strand_uv[kept[k]];
+  }
+  if (!groom.strand_bones.empty()) {
+    a.bone_names = groom.bone_names;
+    a.bone_weights.resize(g);
+    for (size_t k = 0; k < g; ++k) a.bone_weights[k] = groom.strand_bones[kept[k]];
+  }
+
+  // 9. Follow hairs: uniform in a disc of radius R around the guide root, perpendicular to the root edge, stored
+  // in the root frame (local +X is the root edge, so the offset has x = 0).
+  rep.follow_radius = o.follow_radius >= 0 ? o.follow_radius * o.units_to_metres * o.scale : 0.05 * rep.median_strand_length;
+  a.follow_offsets.resize(g * o.follow_per_guide);
+  Random follow_rng(o.seed * 0x9E3779B97F4A7C15ull + 17);
+  for (size_t k = 0; k < g; ++k)
+    for (uint32_t f = 0; f < o.follow_per_guide; ++f) {
+      const double r = rep.follow_radius * std::sqrt(follow_rng.uniform());
+      const double t = 2.0 * 3.14159265358979323846 * follow_rng.uniform();
+      a.follow_offsets[k * o.follow_per_guide + f] = {0.0f, static_cast<float>(r * std::cos(t)),
+                                                      static_cast<float>(r * std::sin(t)), 0.0f};
+    }
+
+  rep.guides = g;
+  rep.output_vertices = g * n;
+  if (report_out) *report_out = rep;
+  return a;
+}
+
+}  // namespace tressvk::baker
