@@ -1,0 +1,190 @@
+#include <tressvk/engine/buffer.hpp>
+#include <tressvk/engine/image.hpp>
+
+#include <string>
+#include <utility>
+
+namespace tressvk::engine {
+
+bool is_depth_format(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_D16_UNORM_S8_UINT:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+      return true;
+    default:
+      return false;
+  }
+}
+
+uint32_t format_texel_size(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_B8G8R8A8_UNORM:
+    case VK_FORMAT_B8G8R8A8_SRGB:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_D32_SFLOAT:
+      return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 16;
+    default:
+      return 0;
+  }
+}
+
+Image::Image(const Device& device, const ImageDesc& desc)
+    : device_(device.device()), allocator_(device.allocator()), desc_(desc) {
+  if (desc.width == 0 || desc.height == 0) throw Error("Image: width and height must be positive");
+  aspect_ = is_depth_format(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+  VkImageCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = desc.format;
+  info.extent = {desc.width, desc.height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = desc.samples;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = desc.usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VmaAllocationCreateInfo aci{};
+  aci.usage = VMA_MEMORY_USAGE_AUTO_PREFER_DEVICE;
+  vk_check(vmaCreateImage(allocator_, &info, &aci, &image_, &allocation_, nullptr), "vmaCreateImage");
+
+  VkImageViewCreateInfo vi{};
+
+  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+  vi.image = image_;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = desc.format;
+  vi.subresourceRange = {aspect_, 0, 1, 0, 1};
+  const VkResult vr = vkCreateImageView(device_, &vi, nullptr, &view_);
+  if (vr != VK_SUCCESS) {
+    reset();
+    vk_check(vr, "vkCreateImageView");
+  }
+}
+
+Image::Image(Image&& other) noexcept { *this = std::move(other); }
+
+Image& Image::operator=(Image&& other) noexcept {
+  if (this != &other) {
+    reset();
+    device_ = other.device_;
+    allocator_ = other.allocator_;
+    image_ = std::exchange(other.image_, VK_NULL_HANDLE);
+    allocation_ = std::exchange(other.allocation_, VK_NULL_HANDLE);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    desc_ = other.desc_;
+    aspect_ = other.aspect_;
+  }
+  return *this;
+}
+
+void Image::reset() {
+  if (view_) vkDestroyImageView(device_, view_, nullptr);
+  if (image_) vmaDestroyImage(allocator_, image_, allocation_);
+  view_ = VK_NULL_HANDLE;
+  image_ = VK_NULL_HANDLE;
+  allocation_ = VK_NULL_HANDLE;
+}
+
+OffscreenTarget create_offscreen_target(const Device& device, uint32_t width, uint32_t height, VkFormat color_format,
+                                        VkFormat depth_format) {
+  OffscreenTarget target;
+  if (color_format != VK_FORMAT_UNDEFINED)
+    target.color = Image(device, {width, height, color_format,
+                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                      VK_IMAGE_USAGE_SAMPLED_BIT});
+  if (depth_format != VK_FORMAT_UNDEFINED)
+    target.depth = Image(device, {width, height, depth_format,
+                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  return target;
+}
+
+void cmd_set_viewport_scissor(VkCommandBuffer cmd, VkExtent2D extent) {
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
+                            0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, const ClearValues& clear,
+                         const ResourceState& previous_color, const ResourceState& previous_depth) {
+  VkRenderingAttachmentInfo color{};
+  color.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  VkRenderingAttachmentInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
+  VkRenderingInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
+  info.renderArea = {{0, 0}, target.extent()};
+  info.layerCount = 1;
+  if (target.color) {
+    cmd_image_barrier(cmd, target.color.handle(), VK_IMAGE_ASPECT_COLOR_BIT, previous_color, state::kColorAttachment);
+    color.imageView = target.color.view();
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    for (int i = 0; i < 4; ++i) color.clearValue.color.float32[i] = clear.color[static_cast<size_t>(i)];
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &color;
+  }
+  if (target.depth) {
+    cmd_image_barrier(cmd, target.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, previous_depth, state::kDepthAttachment);
+    depth.imageView = target.depth.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {clear.depth, 0};
+    info.pDepthAttachment = &depth;
+  }
+  vkCmdBeginRendering(cmd, &info);
+  cmd_set_viewport_scissor(cmd, target.extent());
+}
+
+void cmd_end_rendering(VkCommandBuffer cmd) { vkCmdEndRendering(cmd); }
+
+std::array<uint8_t, 4> Pixels::rgba8(uint32_t x, uint32_t y) const {
+  if (x >= width || y >= height || texel_size != 4) throw Error("Pixels::rgba8: out of range or not 8-bit RGBA");
+  const size_t i = (static_cast<size_t>(y) * width + x) * 4;
+  return {data[i], data[i + 1], data[i + 2], data[i + 3]};
+}
+
+Pixels read_image(const Device& device, const Image& image, const ResourceState& current) {
+  const uint32_t texel = format_texel_size(image.format());
+  if (texel == 0 || is_depth_format(image.format()))
+    throw Error("read_image: colour format " + std::to_string(image.format()) + " is not supported for readback");
+  Pixels pixels;
+  pixels.width = image.width();
+  pixels.height = image.height();
+  pixels.texel_size = texel;
+  const VkDeviceSize bytes = VkDeviceSize{texel} * image.width() * image.height();
+  Buffer staging = create_buffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback);
+  device.run_commands([&](VkCommandBuffer cmd) {
+    cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, current, state::kTransferSrc);
+    VkBufferImageCopy region{};
+    region.bufferRowLength = 0;  // tightly packed
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {image.width(), image.height(), 1};
+    vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
+    cmd_memory_barrier(cmd, state::kTransferDst, state::kHostRead);
+    // Back to the caller's layout; later users wait for the copy's read.
+    ResourceState back = current;
+    if (back.layout == VK_IMAGE_LAYOUT_UNDEFINED) back = state::kTransferSrc;
+    cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, state::kTransferSrc, back);
+  });
+  vk_check(vmaInvalidateAllocation(staging.allocator(), staging.allocation(), 0, bytes), "vmaInvalidateAllocation");
+  pixels.data.resize(static_cast<size_t>(bytes));
+  std::memcpy(pixels.data.data(), staging.mapped(), pixels.data.size());
+  return pixels;
+}
+
+}  // namespace tressvk::engine
