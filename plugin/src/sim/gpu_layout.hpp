@@ -1,0 +1,108 @@
+// Host mirror of shaders/sim/layout.glsl: binding numbers, specialization constant ids, feature bits and the
+// std430 structs, with static_asserts on every size and offset. Change both files together.
+//
+// Header-only and Vulkan-free so that the CPU reference (plugin/reference) can fill these structs too
+// (reference::to_gpu), which keeps one conversion from the frame planner's double-precision substeps to what the
+// shaders read.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace tressvk::sim {
+
+// ---- descriptor set 0 bindings (all storage buffers) ----
+enum Binding : uint32_t {
+  kBindingPositions = 0,        // vec4 x G*(K+1)*N, read-write
+  kBindingPrevPositions = 1,    // vec4 x G*N, read-write
+  kBindingPrevPrevPositions = 2,// vec4 x G*N, read-write
+  kBindingTangents = 3,         // vec4 x G*(K+1)*N, written
+  kBindingRestPositions = 4,    // vec4 x G*N, static
+  kBindingRestInfo = 5,         // vec4 x G*N, static
+  kBindingRestEdgeLocal = 6,    // vec4 x G*N, static
+  kBindingRootFrames = 7,       // vec4 x G, static
+  kBindingFollowOffsets = 8,    // vec4 x G*K, static (a 16-byte dummy when K = 0)
+  kBindingGuideInfo = 9,        // uvec4 x G, static
+  kBindingBoneIndices = 10,     // uvec4 x G, static (a 16-byte dummy without bones)
+  kBindingBoneWeights = 11,     // vec4 x G, static (a 16-byte dummy without bones)
+  kBindingSkin = 12,            // vec4 x 4 per (substep, bone), per frame
+  kBindingGroups = 13,          // GroupParams x groups, per frame
+  kBindingSteps = 14,           // StepParams x substeps, per frame
+  kBindingCounters = 15,        // uint per instance, read-write
+};
+inline constexpr uint32_t kBindingCount = 16;
+
+// ---- specialization constants ----
+enum SpecConstant : uint32_t {
+  kSpecWorkgroupSize = 0,
+  kSpecVerticesPerStrand = 1,  // N
+  kSpecFollowPerGuide = 2,     // K
+  kSpecFeatures = 3,           // Feature bits
+  kSpecCapsuleCount = 4,
+};
+
+enum Feature : uint32_t {
+  kFeatureGlobalShape = 1u,
+  kFeatureWind = 2u,
+  kFeatureCollision = 4u,
+  kFeatureSkinning = 8u,
+  kFeatureMaxSpeed = 16u,
+};
+
+inline constexpr uint32_t kGuideRootSwing = 1u;  // GuideInfo.y bit
+inline constexpr uint32_t kStepReset = 1u;       // StepParams::flags[0] bits
+inline constexpr uint32_t kStepMoveState = 2u;
+inline constexpr uint32_t kMaxCapsules = 8;
+inline constexpr uint32_t kSkinVec4PerBone = 4;  // 3 affine rows + rotation quaternion
+
+struct GroupParams {
+  float velocity_keep;
+  float global_stiffness;
+  float global_range;
+  float local_stiffness;
+  uint32_t local_iterations;
+  uint32_t length_iterations;
+  float vsp_coefficient;
+  float vsp_threshold;
+  float max_step;
+  float tip_separation;
+  float reserved0;
+  float reserved1;
+};
+static_assert(sizeof(GroupParams) == 48);
+static_assert(offsetof(GroupParams, local_iterations) == 16);
+static_assert(offsetof(GroupParams, vsp_coefficient) == 24);
+static_assert(offsetof(GroupParams, max_step) == 32);
+static_assert(offsetof(GroupParams, tip_separation) == 36);
+
+struct StepParams {
+  std::array<float, 4> gravity;        // xyz g*h^2, w h
+  std::array<float, 4> origin_shift;   // xyz
+  std::array<float, 4> teleport;       // quaternion (x,y,z,w)
+  std::array<uint32_t, 4> flags;       // [0] kStep* bits, [1] substep index
+  std::array<std::array<float, 4>, 4> wind;                  // xyz acceleration*h^2
+  std::array<std::array<float, 4>, 2 * kMaxCapsules> capsule;  // [2c] (p0, r0), [2c+1] (p1, r1)
+};
+static_assert(sizeof(StepParams) == 384);
+static_assert(offsetof(StepParams, origin_shift) == 16);
+static_assert(offsetof(StepParams, teleport) == 32);
+static_assert(offsetof(StepParams, flags) == 48);
+static_assert(offsetof(StepParams, wind) == 64);
+static_assert(offsetof(StepParams, capsule) == 128);
+
+struct PushConstants {
+  uint32_t guide_count;
+  uint32_t step_index;
+  uint32_t skin_base;      // index of a vec4 in the Skin buffer
+  uint32_t group_base;
+  uint32_t counter_index;
+};
+static_assert(sizeof(PushConstants) == 20);
+static_assert(sizeof(PushConstants) <= 128);
+
+using Vec4 = std::array<float, 4>;
+using UVec4 = std::array<uint32_t, 4>;
+static_assert(sizeof(Vec4) == 16 && sizeof(UVec4) == 16);
+
+}  // namespace tressvk::sim

@@ -1,0 +1,98 @@
+// Math shared by the simulation passes. Each function has a double-precision twin in
+// plugin/reference/src/model_math.hpp written in the same order of operations, so the GPU and the reference
+// round the same way up to float32.
+#ifndef TRESSVK_SIM_COMMON_GLSL
+#define TRESSVK_SIM_COMMON_GLSL
+
+#include "sim/layout.glsl"
+
+// Relative thresholds (all lengths are compared with a rest length, never with a constant in metres).
+const float kDirectionEps = 1e-4;  // an edge shorter than this fraction of its rest length has no direction
+
+vec4 quat_mul(vec4 a, vec4 b) {
+  return vec4(a.w * b.xyz + b.w * a.xyz + cross(a.xyz, b.xyz), a.w * b.w - dot(a.xyz, b.xyz));
+}
+
+vec3 quat_rotate(vec4 q, vec3 v) {
+  vec3 t = 2.0 * cross(q.xyz, v);
+  return v + q.w * t + cross(q.xyz, t);
+}
+
+// quat_rotate(q, v) - v, computed without cancellation for small rotations.
+vec3 quat_rotate_delta(vec4 q, vec3 v) {
+  vec3 t = 2.0 * cross(q.xyz, v);
+  return q.w * t + cross(q.xyz, t);
+}
+
+// The minimal rotation taking unit vector a onto unit vector b. For (nearly) opposite vectors any half turn
+// about an axis perpendicular to a is minimal; pick the one about the axis least aligned with a.
+vec4 quat_from_two_unit(vec3 a, vec3 b) {
+  float d = dot(a, b);
+  if (d < -0.999999) {
+    vec3 axis = abs(a.x) < 0.577 ? vec3(1, 0, 0) : (abs(a.y) < 0.577 ? vec3(0, 1, 0) : vec3(0, 0, 1));
+    return vec4(normalize(cross(a, axis)), 0.0);
+  }
+  return normalize(vec4(cross(a, b), 1.0 + d));
+}
+
+// Turns frame q minimally so that its local +X points along e; leaves it when e is too short to trust.
+vec4 frame_align(vec4 q, vec3 e, float min_len) {
+  float len = length(e);
+  if (!(len > min_len)) return q;
+  vec3 x = quat_rotate(q, vec3(1, 0, 0));
+  return normalize(quat_mul(quat_from_two_unit(x, e / len), q));
+}
+
+float strand_rest_length(uint g) { return uintBitsToFloat(guide_info[g].z); }
+
+GroupParams guide_params(uint g) { return group[pc.group_base + guide_info[g].x]; }
+
+// Skinned rest position of a guide vertex in simulation space at the current substep.
+vec3 skin_point(uint g, vec3 x) {
+  if (TVK_HAS(TVK_FEATURE_SKINNING)) {
+    uvec4 bi = bone_index[g];
+    vec4 bw = bone_weight[g];
+    vec4 r0 = vec4(0), r1 = vec4(0), r2 = vec4(0);
+    for (uint i = 0u; i < 4u; ++i) {
+      if (bw[i] == 0.0) continue;
+      uint o = pc.skin_base + 4u * bi[i];
+      r0 += bw[i] * skin[o];
+      r1 += bw[i] * skin[o + 1u];
+      r2 += bw[i] * skin[o + 2u];
+    }
+    return vec3(dot(r0.xyz, x) + r0.w, dot(r1.xyz, x) + r1.w, dot(r2.xyz, x) + r2.w);
+  }
+  uint o = pc.skin_base;
+  return vec3(dot(skin[o].xyz, x) + skin[o].w, dot(skin[o + 1u].xyz, x) + skin[o + 1u].w,
+              dot(skin[o + 2u].xyz, x) + skin[o + 2u].w);
+}
+
+// Rotation of the strand's skinning (weights blended on the quaternion hemisphere of the first bone).
+vec4 skin_rotation(uint g) {
+  if (TVK_HAS(TVK_FEATURE_SKINNING)) {
+    uvec4 bi = bone_index[g];
+    vec4 bw = bone_weight[g];
+    vec4 q0 = skin[pc.skin_base + 4u * bi[0] + 3u];
+    vec4 q = vec4(0);
+    for (uint i = 0u; i < 4u; ++i) {
+      if (bw[i] == 0.0) continue;
+      vec4 qi = skin[pc.skin_base + 4u * bi[i] + 3u];
+      q += (dot(qi, q0) < 0.0 ? -bw[i] : bw[i]) * qi;
+    }
+    return normalize(q);
+  }
+  return skin[pc.skin_base + 3u];
+}
+
+// The guide's root frame now: the skinned rest root frame, turned onto the current root edge when that edge is
+// long enough (the same frame local shape starts from and follow hairs are turned by).
+vec4 current_root_frame(uint g) {
+  vec4 f = quat_mul(skin_rotation(g), root_frame[g]);
+  uint b = g * N;
+  if (rest_info[b + 1u].z != 0.0) {
+    f = frame_align(f, pos[b + 1u].xyz - pos[b].xyz, kDirectionEps * rest_info[b].x);
+  }
+  return f;
+}
+
+#endif

@@ -1,0 +1,23 @@
+// Pass 5, one thread per follow vertex: follow f of guide g is the guide plus its root offset turned by the
+// guide's current root frame, spread toward the tip by the tip separation; it takes the guide's tangent.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "sim/common.glsl"
+layout(local_size_x_id = 0) in;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  uint G = pc.guide_count;
+  if (i >= G * K * N) return;
+  uint strand = i / N;             // 0 .. G*K-1 over the follow layers
+  uint v = i - strand * N;
+  uint f = strand / G;
+  uint g = strand - f * G;
+  GroupParams gp = guide_params(g);
+  vec3 offset = quat_rotate(current_root_frame(g), follow_offset[g * K + f].xyz);
+  float spread = 1.0 + gp.tip_separation * float(v) / float(N - 1u);
+  uint src = g * N + v;
+  uint dst = G * N + i;
+  pos[dst] = vec4(pos[src].xyz + spread * offset, pos[src].w);
+  tangent[dst] = tangent[src];
+}

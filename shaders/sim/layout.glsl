@@ -1,0 +1,98 @@
+// GPU data layout of the TressVK simulation: every simulation shader includes this file.
+// Mirrored on the host by plugin/src/sim/gpu_layout.hpp; the two must change together (the host side has
+// static_asserts on every size and offset written here).
+//
+// One descriptor set (set 0) per hair instance, storage buffers only. Sizes: G guides, K follows per guide,
+// N vertices per strand. Vertex v of guide g is at g*N+v; follow f of guide g is rendered strand (f+1)*G+g, so
+// its vertex v is at ((f+1)*G+g)*N+v (the asset's strand order: guides first, then follow layers).
+//
+// Positions are in the instance's simulation space: world-oriented axes (gravity and wind are world vectors),
+// origin at the instance translation plus the rotated asset origin, which the host keeps in double precision.
+// float32 only ever holds groom-sized numbers, wherever the character is.
+#ifndef TRESSVK_SIM_LAYOUT_GLSL
+#define TRESSVK_SIM_LAYOUT_GLSL
+
+// ---- specialization constants (one pipeline per combination that a scene uses) -------------------------
+layout(constant_id = 0) const uint WORKGROUP_SIZE = 64;   // used with local_size_x_id = 0; any size works
+layout(constant_id = 1) const uint N = 32;                // vertices per strand (4..128)
+layout(constant_id = 2) const uint K = 0;                 // follow hairs per guide
+layout(constant_id = 3) const uint FEATURES = 0;          // TVK_FEATURE_* bits below
+layout(constant_id = 4) const uint CAPSULE_COUNT = 0;     // 0..8, capsules tested by the length pass
+
+#define TVK_FEATURE_GLOBAL_SHAPE 1u  // integrate: pull toward the skinned rest pose
+#define TVK_FEATURE_WIND 2u          // length: wind displacement
+#define TVK_FEATURE_COLLISION 4u     // length: capsule collision (CAPSULE_COUNT capsules)
+#define TVK_FEATURE_SKINNING 8u      // bone weights blended (otherwise one rigid transform: bone 0)
+#define TVK_FEATURE_MAX_SPEED 16u    // length: velocity clamp
+
+#define TVK_HAS(bit) ((FEATURES & (bit)) != 0u)
+
+// ---- per-instance dynamic state --------------------------------------------------------------------------
+layout(std430, set = 0, binding = 0) buffer Positions { vec4 pos[]; };        // G*(K+1)*N; w = inverse mass (0 = pinned)
+layout(std430, set = 0, binding = 1) buffer PrevPositions { vec4 prev[]; };   // G*N, previous step
+layout(std430, set = 0, binding = 2) buffer PrevPrevPositions { vec4 prevprev[]; };  // G*N, two steps back (VSP)
+layout(std430, set = 0, binding = 3) buffer Tangents { vec4 tangent[]; };     // G*(K+1)*N; xyz unit, w = 0
+
+// ---- per-asset static data (shared by every instance of an asset; built by reference::build_gpu_static) ---
+layout(std430, set = 0, binding = 4) readonly buffer RestPositions { vec4 rest_pos[]; };  // G*N, asset space rel. origin; w = inverse mass
+// x: rest length of edge v->v+1 (0 for v = N-1); y: rest arc length of v from the root / strand rest length;
+// z: 1 when the local-shape frame turns onto the edge arriving at v, 0 when that edge is too short to have a
+//    reliable direction (the frame is carried over it); w: 0.
+layout(std430, set = 0, binding = 5) readonly buffer RestInfo { vec4 rest_info[]; };      // G*N
+layout(std430, set = 0, binding = 6) readonly buffer RestEdgeLocal { vec4 rest_edge_local[]; };  // G*N: edge leaving v in the model frame at v; w = 0
+layout(std430, set = 0, binding = 7) readonly buffer RootFrames { vec4 root_frame[]; };   // G: rest frame at the root, quaternion (x,y,z,w)
+layout(std430, set = 0, binding = 8) readonly buffer FollowOffsets { vec4 follow_offset[]; };  // G*K, in the root frame; w = 0
+// x: strand group; y: TVK_GUIDE_* flags; z: floatBitsToUint(strand rest length, m); w: 0.
+layout(std430, set = 0, binding = 9) readonly buffer GuideInfo { uvec4 guide_info[]; };   // G
+layout(std430, set = 0, binding = 10) readonly buffer BoneIndices { uvec4 bone_index[]; }; // G (read only with SKINNING)
+layout(std430, set = 0, binding = 11) readonly buffer BoneWeights { vec4 bone_weight[]; }; // G (read only with SKINNING)
+
+#define TVK_GUIDE_ROOT_SWING 1u  // the root edge is long enough for VSP to take its swing from it
+
+// ---- per-frame parameters, written by the host into a ring (one slice per frame in flight) ----------------
+// Skinning, per substep s and bone b, 4 vec4 at skin[pc.skin_base + 4*b] (pc.skin_base selects the substep):
+// [0..2] rows of the affine 3x4 map from asset space (rest positions) to simulation space, instance motion
+// included; [3] the rotation of that map as a quaternion (x,y,z,w).
+layout(std430, set = 0, binding = 12) readonly buffer Skin { vec4 skin[]; };
+
+struct GroupParams {            // per strand group; std430, 48 bytes. Everything already per step (h folded in).
+  float velocity_keep;          // exp(-damping * h * 60)
+  float global_stiffness;       // 0..1 per step (0 when the GLOBAL_SHAPE feature is off for this group)
+  float global_range;           // arc-length fraction of the strand from the root
+  float local_stiffness;        // 0.5 * min(local_stiffness, 0.95): the per-iteration fraction
+  uint local_iterations;        // honoured for every N
+  uint length_iterations;
+  float vsp_coefficient;        // 0..1
+  float vsp_threshold;          // m per step^2: a * h^2
+  float max_step;               // m per step: max_speed * h (used with MAX_SPEED)
+  float tip_separation;         // resolved (the asset's baked value when the params said "asset")
+  float reserved0;
+  float reserved1;
+};
+layout(std430, set = 0, binding = 13) readonly buffer Groups { GroupParams group[]; };
+
+struct StepParams {             // per substep; std430, 384 bytes. Everything in simulation space, per step.
+  vec4 gravity;                 // xyz: g * h^2 (m); w: h (s)
+  vec4 origin_shift;            // xyz: move of the simulation origin since the last step; subtracted from the state
+  vec4 teleport;                // quaternion (x,y,z,w) turning the state about the origin (identity when none)
+  uvec4 flags;                  // x: TVK_STEP_* bits; y: substep index within the frame; z, w: 0
+  vec4 wind[4];                 // xyz: wind acceleration * h^2 (m), the pyramid blended per strand; w: 0
+  vec4 capsule[16];             // capsule c: [2c] = (p0, r0), [2c+1] = (p1, r1)
+};
+layout(std430, set = 0, binding = 14) readonly buffer Steps { StepParams step_params[]; };
+
+#define TVK_STEP_RESET 1u       // put every strand at its skinned rest pose with zero velocity
+#define TVK_STEP_MOVE_STATE 2u  // apply origin_shift and teleport to pos/prev/prevprev before integrating
+
+// Counters the host reads back now and then: [pc.counter_index] strands reset after going non-finite.
+layout(std430, set = 0, binding = 15) buffer Counters { uint counters[]; };
+
+layout(push_constant) uniform PushConstants {   // 20 bytes
+  uint guide_count;     // G: dispatches cover exactly G guides' work, every thread bounds-checks
+  uint step_index;      // index into step_params
+  uint skin_base;       // first vec4 of this substep's skinning data in skin[]
+  uint group_base;      // index of this instance's group 0 in group[]
+  uint counter_index;   // this instance's slot in counters[]
+} pc;
+
+#endif

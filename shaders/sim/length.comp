@@ -1,0 +1,127 @@
+// Pass 4, one thread per guide: wind, length constraints (root-to-tip Gauss-Seidel sweeps), capsule
+// collision, velocity clamp, the non-finite check (a strand that went NaN/Inf is reset to its skinned rest pose
+// and counted, so it never spreads), and tangents. Terms not compiled in (FEATURES, CAPSULE_COUNT) cost nothing.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "sim/common.glsl"
+layout(local_size_x_id = 0) in;
+
+bool finite3(vec3 x) { return !any(isnan(x)) && !any(isinf(x)); }
+
+void main() {
+  uint g = gl_GlobalInvocationID.x;
+  if (g >= pc.guide_count) return;
+  GroupParams gp = guide_params(g);
+  uint b = g * N;
+
+  if (TVK_HAS(TVK_FEATURE_WIND)) {
+    // Per strand a fixed blend of the wind pyramid; the segment arriving at v takes the component of the wind
+    // perpendicular to it (wind bends hair, it does not stretch it). Scale-free: an acceleration times h^2.
+    float a = float(g % 20u) / 20.0;
+    vec3 w = a * (step_params[pc.step_index].wind[0].xyz + step_params[pc.step_index].wind[2].xyz) +
+             (1.0 - a) * (step_params[pc.step_index].wind[1].xyz + step_params[pc.step_index].wind[3].xyz);
+    for (uint v = 1u; v < N; ++v) {
+      vec4 p = pos[b + v];
+      if (!(p.w > 0.0)) continue;
+      vec3 e = p.xyz - pos[b + v - 1u].xyz;
+      float len = length(e);
+      vec3 push = w;
+      if (len > kDirectionEps * rest_info[b + v - 1u].x) {
+        vec3 t = e / len;
+        push = w - dot(w, t) * t;
+      }
+      pos[b + v] = vec4(p.xyz + push, p.w);
+    }
+  }
+
+  for (uint it = 0u; it < gp.length_iterations; ++it) {
+    for (uint v = 0u; v + 1u < N; ++v) {
+      vec4 p = pos[b + v];
+      vec4 n = pos[b + v + 1u];
+      float wa = p.w > 0.0 ? 1.0 : 0.0;
+      float wb = n.w > 0.0 ? 1.0 : 0.0;
+      float wsum = wa + wb;
+      if (wsum == 0.0) continue;
+      vec3 d = n.xyz - p.xyz;
+      float len = length(d);
+      if (!(len > 0.0)) continue;
+      vec3 corr = ((len - rest_info[b + v].x) / (len * wsum)) * d;
+      if (p.w > 0.0) pos[b + v] = vec4(p.xyz + wa * corr, p.w);
+      if (n.w > 0.0) pos[b + v + 1u] = vec4(n.xyz - wb * corr, n.w);
+    }
+  }
+
+  if (TVK_HAS(TVK_FEATURE_COLLISION)) {
+    for (uint v = 0u; v < N; ++v) {
+      vec4 p = pos[b + v];
+      if (!(p.w > 0.0)) continue;
+      vec3 x = p.xyz;
+      vec3 y = prev[b + v].xyz;
+      bool hit = false;
+      for (uint c = 0u; c < CAPSULE_COUNT; ++c) {
+        vec4 c0 = step_params[pc.step_index].capsule[2u * c];
+        vec4 c1 = step_params[pc.step_index].capsule[2u * c + 1u];
+        vec3 axis = c1.xyz - c0.xyz;
+        float aa = dot(axis, axis);
+        float t = aa > 0.0 ? clamp(dot(x - c0.xyz, axis) / aa, 0.0, 1.0) : 0.0;
+        vec3 centre = c0.xyz + t * axis;
+        float radius = mix(c0.w, c1.w, t);
+        vec3 d = x - centre;
+        float dist = length(d);
+        if (!(dist < radius)) continue;
+        // Push out along the offset from the axis; on the axis itself (no direction), back the way it came.
+        vec3 nrm;
+        if (dist > kDirectionEps * radius) {
+          nrm = d / dist;
+        } else {
+          vec3 back = y - centre;
+          float bl = length(back);
+          nrm = bl > kDirectionEps * radius ? back / bl : vec3(0, 1, 0);
+        }
+        x = centre + radius * nrm;
+        // Remove only the velocity into the surface: tangential motion slides on.
+        float vn = dot(x - y, nrm);
+        if (vn < 0.0) y += vn * nrm;
+        hit = true;
+      }
+      if (hit) {
+        pos[b + v] = vec4(x, p.w);
+        prev[b + v] = vec4(y, p.w);
+      }
+    }
+  }
+
+  if (TVK_HAS(TVK_FEATURE_MAX_SPEED)) {
+    for (uint v = 0u; v < N; ++v) {
+      vec4 p = pos[b + v];
+      if (!(p.w > 0.0)) continue;
+      vec3 step = p.xyz - prev[b + v].xyz;
+      float len = length(step);
+      if (len > gp.max_step) prev[b + v] = vec4(p.xyz - step * (gp.max_step / len), p.w);
+    }
+  }
+
+  bool ok = true;
+  for (uint v = 0u; v < N; ++v) ok = ok && finite3(pos[b + v].xyz) && finite3(prev[b + v].xyz);
+  if (!ok) {
+    for (uint v = 0u; v < N; ++v) {
+      vec4 rest = rest_pos[b + v];
+      vec4 p = vec4(skin_point(g, rest.xyz), rest.w);
+      pos[b + v] = p;
+      prev[b + v] = p;
+      prevprev[b + v] = p;
+    }
+    atomicAdd(counters[pc.counter_index], 1u);
+  }
+
+  // Tangents: along the edge leaving v (arriving, for the tip); an edge too short to have a direction reuses
+  // the previous tangent, and the root falls back to the current root frame's +X.
+  float min_len = kDirectionEps * strand_rest_length(g) / float(N - 1u);
+  vec3 last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
+  for (uint v = 0u; v < N; ++v) {
+    vec3 e = v + 1u < N ? pos[b + v + 1u].xyz - pos[b + v].xyz : pos[b + v].xyz - pos[b + v - 1u].xyz;
+    float len = length(e);
+    if (len > min_len) last = e / len;
+    tangent[b + v] = vec4(last, 0.0);
+  }
+}

@@ -1,0 +1,31 @@
+// Pass 3, one thread per guide (strands are independent): local shape constraints. All configured iterations
+// run inside this one dispatch, for every N. A frame is carried from the skinned root frame along the current
+// strand by minimal rotations (over edges long enough to have a direction); the rest edge leaving v, expressed in
+// that frame, gives the target of v+1, and both ends move toward it (TressFX 3.x/4.0 semantics).
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "sim/common.glsl"
+layout(local_size_x_id = 0) in;
+
+void main() {
+  uint g = gl_GlobalInvocationID.x;
+  if (g >= pc.guide_count) return;
+  GroupParams gp = guide_params(g);
+  float s = gp.local_stiffness;
+  uint b = g * N;
+  vec4 root = quat_mul(skin_rotation(g), root_frame[g]);
+
+  for (uint it = 0u; it < gp.local_iterations; ++it) {
+    vec4 f = root;
+    for (uint v = 1u; v + 1u < N; ++v) {
+      vec4 a = pos[b + v - 1u];
+      vec4 p = pos[b + v];
+      if (rest_info[b + v].z != 0.0) f = frame_align(f, p.xyz - a.xyz, kDirectionEps * rest_info[b + v - 1u].x);
+      vec4 n = pos[b + v + 1u];
+      vec3 target = p.xyz + quat_rotate(f, rest_edge_local[b + v].xyz);
+      vec3 d = s * (target - n.xyz);
+      if (p.w > 0.0) pos[b + v] = vec4(p.xyz - d, p.w);
+      if (n.w > 0.0) pos[b + v + 1u] = vec4(n.xyz + d, n.w);
+    }
+  }
+}
