@@ -154,6 +154,36 @@ engine::Buffer make_buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, engine:
   return engine::create_buffer(device(), bytes, usage, memory);
 }
 
+namespace {
+void on_plugin_message(TvkMessageSeverity severity, const char* message, void* user_data) {
+  const char* level = severity == TVK_MESSAGE_ERROR ? "error" : severity == TVK_MESSAGE_WARNING ? "warning" : "info";
+  std::printf("[tressvk %s] %s\n", level, message);
+  if (severity == TVK_MESSAGE_ERROR && user_data) *static_cast<std::string*>(user_data) = message;
+}
+}  // namespace
+
+void PluginContextDeleter::operator()(TvkContext context) const {
+  if (!context) return;
+  vkDeviceWaitIdle(device().device());
+  tressvk_destroy_context(context);
+}
+
+PluginContext create_plugin_context(uint32_t frames_in_flight) {
+  engine::Device& dev = device();
+  static std::string last_error;  // outlives the context: the callback may run until destruction
+  TvkContextCreateInfo info = dev.plugin_context_info();
+  info.frames_in_flight = frames_in_flight;
+  info.message_callback = on_plugin_message;
+  info.message_user_data = &last_error;
+  TvkContext context = nullptr;
+  last_error.clear();
+  const TvkResult r = tressvk_create_context(&info, &context);
+  INFO("tressvk_create_context: " << tressvk_result_string(r) << (last_error.empty() ? "" : ": ") << last_error);
+  REQUIRE(r == TVK_SUCCESS);
+  REQUIRE(context != nullptr);
+  return PluginContext(context);
+}
+
 uint64_t validation_message_count() { return device().messages().count(); }
 
 ExpectedValidationMessages::ExpectedValidationMessages(uint64_t min_count, std::string id_contains)

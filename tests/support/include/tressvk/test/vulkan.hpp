@@ -19,10 +19,12 @@
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/messenger.hpp>
+#include <tressvk/tressvk.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -58,6 +60,15 @@ std::vector<T> read_buffer(const engine::Buffer& buffer, size_t count = 0, VkDev
   if (count == 0) count = static_cast<size_t>((buffer.size() - offset) / sizeof(T));
   return engine::read_buffer_as<T>(device(), buffer, count, offset);
 }
+
+// A TressVK context on the test device, created through the C API the way a host does. Plugin messages are
+// printed; creation failure fails the test (REQUIRE) with tressvk_result_string and the plugin's message. The
+// deleter waits for the device to be idle before tressvk_destroy_context, as the API requires.
+struct PluginContextDeleter {
+  void operator()(TvkContext context) const;
+};
+using PluginContext = std::unique_ptr<TvkContext_T, PluginContextDeleter>;
+PluginContext create_plugin_context(uint32_t frames_in_flight = 2);
 
 // Validation messages counted on the test device since it was created.
 uint64_t validation_message_count();
