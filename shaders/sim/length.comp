@@ -91,7 +91,7 @@ void main() {
     }
   }
 
-  if (TVK_HAS(TVK_FEATURE_MAX_SPEED)) {
+  if (TVK_HAS(TVK_FEATURE_MAX_SPEED) && gp.max_step > 0.0) {
     for (uint v = 0u; v < N; ++v) {
       vec4 p = pos[b + v];
       if (!(p.w > 0.0)) continue;

@@ -17,6 +17,7 @@ void main() {
   if (!(x.w > 0.0)) return;
 
   GroupParams gp = guide_params(g);
+  if (!(gp.vsp_coefficient > 0.0)) return;  // VSP off for this group (the pass runs for another group)
   uint b = g * N;
   vec3 p0 = pos[b].xyz, p1 = pos[b + 1u].xyz;
   vec3 q0 = prev[b].xyz, q1 = prev[b + 1u].xyz;

@@ -1,0 +1,91 @@
+// Double-precision vector and quaternion helpers of the CPU reference. Each operation mirrors a function of
+// shaders/sim/common.glsl in the same order of operations, so the two differ only by float32 rounding.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tressvk::reference {
+
+struct Vec3 {
+  double x = 0, y = 0, z = 0;
+  constexpr double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+constexpr Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+constexpr Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
+constexpr Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+constexpr Vec3 operator*(Vec3 a, double s) { return {s * a.x, s * a.y, s * a.z}; }
+constexpr Vec3 operator/(Vec3 a, double s) { return {a.x / s, a.y / s, a.z / s}; }
+constexpr Vec3& operator+=(Vec3& a, Vec3 b) { return a = a + b; }
+constexpr Vec3& operator-=(Vec3& a, Vec3 b) { return a = a - b; }
+constexpr double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 cross(Vec3 a, Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normalize(Vec3 a) { return a / length(a); }
+constexpr Vec3 mix(Vec3 a, Vec3 b, double t) { return a + t * (b - a); }
+inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+
+// Unit quaternion (x, y, z, w) = (v, w).
+struct Quat {
+  double x = 0, y = 0, z = 0, w = 1;
+  constexpr Vec3 v() const { return {x, y, z}; }
+};
+constexpr Quat make_quat(Vec3 v, double w) { return {v.x, v.y, v.z, w}; }
+inline Quat normalize(Quat q) {
+  double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  return {q.x / n, q.y / n, q.z / n, q.w / n};
+}
+constexpr double dot(Quat a, Quat b) { return a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w; }
+constexpr Quat conjugate(Quat q) { return {-q.x, -q.y, -q.z, q.w}; }
+constexpr Quat quat_mul(Quat a, Quat b) {
+  return make_quat(a.w * b.v() + b.w * a.v() + cross(a.v(), b.v()), a.w * b.w - dot(a.v(), b.v()));
+}
+constexpr Vec3 quat_rotate(Quat q, Vec3 v) {
+  Vec3 t = 2.0 * cross(q.v(), v);
+  return v + q.w * t + cross(q.v(), t);
+}
+// quat_rotate(q, v) - v without cancellation for small rotations.
+constexpr Vec3 quat_rotate_delta(Quat q, Vec3 v) {
+  Vec3 t = 2.0 * cross(q.v(), v);
+  return q.w * t + cross(q.v(), t);
+}
+// Minimal rotation taking unit a onto unit b (a half turn about the axis least aligned with a when opposite).
+inline Quat quat_from_two_unit(Vec3 a, Vec3 b) {
+  double d = dot(a, b);
+  if (d < -0.999999) {
+    Vec3 axis = std::abs(a.x) < 0.577 ? Vec3{1, 0, 0} : (std::abs(a.y) < 0.577 ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
+    return make_quat(normalize(cross(a, axis)), 0.0);
+  }
+  return normalize(make_quat(cross(a, b), 1.0 + d));
+}
+// Turns frame q minimally so that its local +X points along e; leaves it when e is not longer than min_len.
+inline Quat frame_align(Quat q, Vec3 e, double min_len) {
+  double len = length(e);
+  if (!(len > min_len)) return q;
+  Vec3 x = quat_rotate(q, Vec3{1, 0, 0});
+  return normalize(quat_mul(quat_from_two_unit(x, e / len), q));
+}
+inline Quat slerp(Quat a, Quat b, double t) {
+  double d = dot(a, b);
+  if (d < 0) {
+    b = {-b.x, -b.y, -b.z, -b.w};
+    d = -d;
+  }
+  if (d > 0.9999999) {
+    return normalize(Quat{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z), a.w + t * (b.w - a.w)});
+  }
+  double th = std::acos(std::clamp(d, -1.0, 1.0));
+  double s = std::sin(th);
+  double wa = std::sin((1 - t) * th) / s, wb = std::sin(t * th) / s;
+  return normalize(Quat{wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z, wa * a.w + wb * b.w});
+}
+// Quaternion of a rotation matrix given by rows (m[r][c]).
+Quat quat_from_matrix(const std::array<std::array<double, 3>, 3>& m);
+std::array<std::array<double, 3>, 3> matrix_from_quat(Quat q);
+
+}  // namespace tressvk::reference

@@ -1,0 +1,77 @@
+// The model's rest data, derived once per asset in double precision, and its float32 GPU form. Both the CPU
+// reference and the GPU passes use exactly this data, so they simulate the same model.
+//
+// Beyond what the asset stores, the model decides per vertex whether the local-shape frame turns onto the edge
+// arriving at v (an edge much shorter than the one leaving v has an unreliable direction in float32, so the frame
+// is carried over it), and re-expresses each rest edge in the frame so defined; and per strand whether the root
+// edge is long enough for velocity shock propagation to take its swing from it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <tressvk/asset.hpp>
+
+#include "sim/gpu_layout.hpp"
+#include "tressvk/reference/math.hpp"
+
+namespace tressvk::reference {
+
+// An edge arriving at v drives the frame only if it is at least this fraction of the edge leaving v (so a frame
+// direction error from float rounding, delta/|e_in|, moves the next target by at most delta/kFrameEdgeRatio),
+// and at least kFrameEdgeMinRel of the strand's mean segment.
+inline constexpr double kFrameEdgeRatio = 0.2;
+inline constexpr double kFrameEdgeMinRel = 1e-3;
+// The root edge drives the VSP swing only if it is at least this fraction of the strand's mean segment.
+inline constexpr double kRootSwingMinRel = 0.25;
+// GLSL twin: kDirectionEps in common.glsl.
+inline constexpr double kDirectionEps = 1e-4;
+
+struct ModelRest {
+  uint32_t guide_count = 0;        // G
+  uint32_t vertices_per_strand = 0;// N
+  uint32_t follow_per_guide = 0;   // K
+  double asset_tip_separation = 0;
+  std::array<double, 3> asset_origin{};
+  uint32_t bone_count = 0;         // asset bones (0 = rigid only)
+
+  // Per guide vertex (G*N).
+  std::vector<Vec3> rest_pos;      // asset space relative to the asset origin (the float values, widened)
+  std::vector<double> inv_mass;    // 0 = pinned
+  std::vector<double> rest_length; // edge v -> v+1 (0 at the tip)
+  std::vector<double> arc_fraction;// rest arc length from the root / strand length
+  std::vector<uint8_t> frame_turns;// 1 = the frame turns onto the edge arriving at v
+  std::vector<Vec3> rest_edge_local;
+  // Per guide.
+  std::vector<Quat> root_frame;
+  std::vector<double> strand_length;
+  std::vector<uint8_t> root_swing; // 1 = VSP takes its swing from the root edge
+  std::vector<uint32_t> group;
+  std::vector<std::array<uint32_t, 4>> bone_index;
+  std::vector<std::array<double, 4>> bone_weight;
+  // Per follow (G*K).
+  std::vector<Vec3> follow_offset;
+  uint32_t group_count = 1;
+};
+
+// Throws std::invalid_argument naming the field when the asset is inconsistent.
+ModelRest build_model_rest(const asset::HairAsset& asset);
+
+// The static buffers (bindings 4..11) exactly as the GPU reads them. Buffers that would be empty (no follows, no
+// bones) hold one zero element, since Vulkan buffers cannot be empty.
+struct GpuStatic {
+  std::vector<sim::Vec4> rest_positions;    // binding 4
+  std::vector<sim::Vec4> rest_info;         // binding 5
+  std::vector<sim::Vec4> rest_edge_local;   // binding 6
+  std::vector<sim::Vec4> root_frames;       // binding 7
+  std::vector<sim::Vec4> follow_offsets;    // binding 8
+  std::vector<sim::UVec4> guide_info;       // binding 9
+  std::vector<sim::UVec4> bone_indices;     // binding 10
+  std::vector<sim::Vec4> bone_weights;      // binding 11
+};
+GpuStatic build_gpu_static(const ModelRest& rest);
+
+// Median of the guides' rest lengths: the normalisation of every error metric.
+double median_strand_length(const ModelRest& rest);
+
+}  // namespace tressvk::reference

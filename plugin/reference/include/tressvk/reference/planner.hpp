@@ -1,0 +1,122 @@
+// The frame planner, shared by the GPU host code and the reference: it turns one frame's inputs (dt, instance
+// transform, bone matrices, wind, capsules, teleport/reset) into the list of fixed-size substeps, with
+// everything each substep needs in double precision and in simulation space.
+//
+// Simulation space: world-oriented axes, origin O = T + R * asset_origin (T, R: the instance translation and
+// rotation at that substep, kept in double here). So the GPU only ever holds groom-sized numbers, and a
+// character 10 km away stores the same floats as one at the origin.
+//
+// Time policy (docs/simulation.md): fixed step h = 1/step_rate; an accumulator collects frame time; a frame
+// runs floor(accumulated/h) steps, at most max_steps_per_frame; when capped, the surplus whole steps are dropped
+// (the frame plays in slow motion; nothing explodes and nothing is owed to later frames). The instance (and bone)
+// motion since the last simulated step is interpolated across the frame's steps (lerp/slerp), so k steps see k
+// equal slices of it. A frame with no step carries its motion over to the next step.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "sim/gpu_layout.hpp"
+#include "tressvk/reference/math.hpp"
+#include "tressvk/sim_types.h"
+
+namespace tressvk::reference {
+
+// An affine map asset space -> simulation space (rows of a 3x4), with its rotation as a quaternion.
+struct SkinTransform {
+  std::array<std::array<double, 4>, 3> rows{};
+  Quat rotation;
+  Vec3 apply(Vec3 x) const {
+    return {rows[0][0] * x.x + rows[0][1] * x.y + rows[0][2] * x.z + rows[0][3],
+            rows[1][0] * x.x + rows[1][1] * x.y + rows[1][2] * x.z + rows[1][3],
+            rows[2][0] * x.x + rows[2][1] * x.y + rows[2][2] * x.z + rows[2][3]};
+  }
+};
+
+struct CapsuleSim {
+  Vec3 p0, p1;
+  double r0 = 0, r1 = 0;
+};
+
+struct Substep {
+  double h = 0;                 // s
+  double time = 0;              // simulation time at the end of this step (s), step_counter * h
+  uint32_t index = 0;           // substep index within the frame
+  bool reset = false;           // put every strand at its skinned rest pose, at rest
+  bool move_state = false;      // apply origin_shift and teleport to the state before integrating
+  Vec3 origin_shift;            // O_now - O_before (m)
+  Quat teleport;                // rotation about the origin (identity unless teleporting)
+  Vec3 gravity_h2;              // g * h^2 (m)
+  std::array<Vec3, 4> wind_h2;  // wind pyramid, acceleration * h^2 (m); zero without wind
+  bool wind = false;
+  uint32_t capsule_count = 0;
+  std::array<CapsuleSim, TVK_MAX_CAPSULES> capsules{};
+  std::vector<SkinTransform> skin;  // one per asset bone, or one (rigid) when the frame gave no bones
+};
+
+struct FramePlan {
+  std::vector<Substep> steps;        // may be empty (a frame shorter than the time left to the next step)
+  bool skinned = false;              // skin holds one transform per bone (else one rigid transform)
+  std::array<double, 3> sim_origin{};// world position of the simulation origin after the last step (double)
+  uint32_t dropped_steps = 0;        // whole steps dropped by the cap in this frame
+};
+
+class FramePlanner {
+ public:
+  // asset_origin: HairAsset::origin; bone_count: the asset's bone count (0 = rigid only).
+  FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count);
+
+  // Throws std::invalid_argument for bad input (negative dt, bone_count mismatch, too many capsules...).
+  FramePlan plan(const TvkSimFrame& frame);
+
+  double step_length() const { return h_; }
+  uint64_t steps_taken() const { return step_counter_; }
+  void set_settings(const TvkSimSettings& settings);
+
+ private:
+  struct Pose {
+    Vec3 t;   // world translation (double)
+    Quat r;
+  };
+  TvkSimSettings settings_;
+  std::array<double, 3> asset_origin_;
+  uint32_t bone_count_;
+  double h_ = 0;
+  double accumulator_ = 0;   // in steps
+  uint64_t step_counter_ = 0;
+  bool started_ = false;
+  bool pending_reset_ = true;
+  bool pending_teleport_ = false;
+  Quat pending_turn_;
+  Pose last_;                // instance pose at the last simulated step
+  std::vector<Pose> last_bones_;
+};
+
+// Per-group parameters converted to per-step values for step length h (what both sides use).
+struct GroupStep {
+  double velocity_keep = 1;    // exp(-damping * h * 60)
+  double global_stiffness = 0; // 0 when range or stiffness is 0
+  double global_range = 0;
+  double local_stiffness = 0;  // 0.5 * min(s, 0.95)
+  uint32_t local_iterations = 0;  // 0 when stiffness is 0
+  uint32_t length_iterations = 1;
+  double vsp_coefficient = 0;  // 0 = no VSP for this group
+  double vsp_threshold = 0;    // a * h^2
+  double max_step = 0;         // max_speed * h, 0 = off
+  double tip_separation = 0;   // resolved against the asset's
+};
+// Throws std::invalid_argument for out-of-range values (naming the field).
+GroupStep to_group_step(const TvkSimParams& params, double h, double asset_tip_separation);
+
+// The conversions the host uploads: everything the shaders read per frame.
+struct GpuFrame {
+  std::vector<sim::StepParams> steps;  // one per substep
+  std::vector<sim::Vec4> skin;         // steps * bones_per_step * 4 vec4 (substep s starts at s * skin_stride)
+  uint32_t skin_stride = 0;            // vec4 per substep
+};
+GpuFrame to_gpu(const FramePlan& plan);
+sim::GroupParams to_gpu(const GroupStep& group);
+
+}  // namespace tressvk::reference

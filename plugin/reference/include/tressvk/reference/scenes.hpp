@@ -1,0 +1,42 @@
+// Scripted scenes for the tests and the bench (docs/simulation.md describes each): a function of the frame index
+// giving that frame's inputs. The geometry they move and collide with is derived from the groom (a sphere fitted to
+// the roots stands for the head), so the same script works for every groom.
+//
+//   settle    static head, gravity only
+//   shake     head turning +-60 degrees about the vertical at 2 Hz (about the head centre)
+//   run       running forward at 3 m/s, head bobbing 4 cm at 2.8 Hz and nodding 8 degrees; capsules for the
+//             head and the shoulders
+//   teleport  static, and every 60 frames a jump of 1 m and 90 degrees in one frame (flagged as a teleport)
+//   wind      static head in gusty wind (4 m/s^2, gusts +-80% at 0.5 Hz)
+//   hitch     head turning +-60 degrees at 0.7 Hz while walking at 1.5 m/s, frame times alternating 1/60 s and 0.25 s
+//   far       shake, 10 km from the world origin
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tressvk/reference/math.hpp"
+#include "tressvk/reference/model.hpp"
+#include "tressvk/sim_types.h"
+
+namespace tressvk::reference {
+
+struct SceneGeometry {
+  Vec3 head_centre;        // instance space
+  double head_radius = 0;  // m
+};
+
+// A sphere fitted to the root positions (least squares), falling back to one under the roots' bounding box
+// when the roots do not determine a sphere (e.g. a narrow strip such as a mohawk).
+SceneGeometry scene_geometry(const ModelRest& rest);
+
+std::vector<std::string> scene_names();
+inline constexpr double kSceneFrameDt = 1.0 / 60.0;
+inline constexpr double kFarDistance = 10000.0;  // m, the far scene's offset along +X
+
+// Throws std::invalid_argument for an unknown scene name. Bones are not set (rigid head).
+TvkSimFrame scene_frame(std::string_view name, uint32_t frame_index, const SceneGeometry& geometry);
+
+}  // namespace tressvk::reference

@@ -1,0 +1,79 @@
+// The CPU reference simulator: the TressVK model in double precision, pass for pass and in the same order of
+// operations as shaders/sim/*.comp (integrate, vsp, local_shape, length per substep; follow once per frame).
+//
+// Typical uses:
+// - trajectory: construct, then advance(frame) every frame (it plans with its own FramePlanner);
+// - one-frame step error against the GPU: plan once with a shared FramePlanner, record the GPU frame from
+//   to_gpu(plan), set_state() from the GPU state read back before the frame, simulate(plan), compare.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <tressvk/asset.hpp>
+
+#include "tressvk/reference/model.hpp"
+#include "tressvk/reference/planner.hpp"
+#include "tressvk/sim_types.h"
+
+namespace tressvk::reference {
+
+class Simulator {
+ public:
+  // group_params: one per strand group of the asset (a single entry is used for every group).
+  // Throws std::invalid_argument for an inconsistent asset or out-of-range parameters.
+  Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
+            const TvkSimSettings& settings);
+
+  void set_params(std::span<const TvkSimParams> group_params);
+  const std::vector<TvkSimParams>& params() const { return params_; }
+  const ModelRest& rest() const { return rest_; }
+  FramePlanner& planner() { return planner_; }
+
+  // Loads float state as the GPU holds it: pos has G*N (guides) or G*(K+1)*N entries, prev and prevprev G*N.
+  // The w components are ignored (inverse masses come from the asset).
+  void set_state(std::span<const sim::Vec4> pos, std::span<const sim::Vec4> prev, std::span<const sim::Vec4> prevprev);
+
+  // Runs every substep of the plan, then the follow update (when the plan has steps).
+  void simulate(const FramePlan& plan);
+  // Plans with the simulator's own planner, then simulates. Returns the plan.
+  FramePlan advance(const TvkSimFrame& frame);
+
+  // The passes one by one (what simulate() calls), for per-pass tests.
+  void integrate(const Substep& step);
+  void vsp(const Substep& step);
+  void local_shape(const Substep& step);
+  void length_and_collision(const Substep& step);
+  void follow(const Substep& step);
+
+  // State, simulation space. positions(): G*(K+1)*N (guides, then follow layers); prev/prevprev: G*N.
+  std::span<const Vec3> positions() const { return pos_; }
+  std::span<Vec3> mutable_positions() { return pos_; }  // fault injection in tests
+  std::span<const Vec3> prev_positions() const { return prev_; }
+  std::span<const Vec3> prevprev_positions() const { return prevprev_; }
+  std::span<const Vec3> tangents() const { return tangent_; }
+  // Strands reset to the rest pose after going non-finite, since construction.
+  uint64_t nonfinite_resets() const { return nonfinite_resets_; }
+  double median_strand_length() const { return median_length_; }
+  // Skinned rest position of guide vertex i at a substep.
+  Vec3 skinned_rest(const Substep& step, size_t vertex) const;
+
+ private:
+  const GroupStep& group_of(uint32_t guide) const { return steps_params_[rest_.group[guide]]; }
+  void prepare_groups(double h);
+  Quat skin_rotation(const Substep& step, uint32_t g) const;
+  Quat current_root_frame(const Substep& step, uint32_t g) const;
+
+  ModelRest rest_;
+  std::vector<TvkSimParams> params_;
+  std::vector<GroupStep> steps_params_;
+  double prepared_h_ = -1;
+  FramePlanner planner_;
+  double median_length_ = 0;
+  bool skinned_ = false;  // the current substep blends bones
+  std::vector<Vec3> pos_, prev_, prevprev_, tangent_;
+  uint64_t nonfinite_resets_ = 0;
+};
+
+}  // namespace tressvk::reference

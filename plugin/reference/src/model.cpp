@@ -1,0 +1,149 @@
+#include "tressvk/reference/model.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+#include <string>
+
+namespace tressvk::reference {
+namespace {
+
+Vec3 widen(const std::array<float, 4>& v) { return {v[0], v[1], v[2]}; }
+
+sim::Vec4 narrow(Vec3 v, double w) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), static_cast<float>(w)};
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("reference: asset field " + what);
+}
+
+}  // namespace
+
+ModelRest build_model_rest(const asset::HairAsset& a) {
+  const uint32_t n = a.vertices_per_strand;
+  require(n >= asset::kMinVerticesPerStrand && n <= asset::kMaxVerticesPerStrand,
+          "vertices_per_strand out of range (" + std::to_string(n) + ")");
+  require(a.rest_positions.size() % n == 0 && !a.rest_positions.empty(), "rest_positions: size not G*N");
+  const uint32_t g_count = a.guide_count();
+  const size_t vcount = size_t{g_count} * n;
+  require(a.rest_frames.size() == vcount, "rest_frames: size not G*N");
+  require(a.guide_group.empty() || a.guide_group.size() == g_count, "guide_group: size not G");
+  require(a.follow_offsets.size() == size_t{g_count} * a.follow_per_guide, "follow_offsets: size not G*K");
+  require(a.bone_weights.empty() || a.bone_weights.size() == g_count, "bone_weights: size not G");
+
+  ModelRest m;
+  m.guide_count = g_count;
+  m.vertices_per_strand = n;
+  m.follow_per_guide = a.follow_per_guide;
+  m.asset_tip_separation = a.tip_separation;
+  m.asset_origin = a.origin;
+  m.bone_count = a.bone_weights.empty() ? 0u : static_cast<uint32_t>(a.bone_names.size());
+  m.group_count = std::max<uint32_t>(1u, static_cast<uint32_t>(a.groups.size()));
+
+  m.rest_pos.resize(vcount);
+  m.inv_mass.resize(vcount);
+  m.rest_length.assign(vcount, 0.0);
+  m.arc_fraction.assign(vcount, 0.0);
+  m.frame_turns.assign(vcount, 0);
+  m.rest_edge_local.assign(vcount, Vec3{});
+  m.root_frame.resize(g_count);
+  m.strand_length.assign(g_count, 0.0);
+  m.root_swing.assign(g_count, 0);
+  m.group.assign(g_count, 0);
+  m.bone_index.assign(g_count, {0, 0, 0, 0});
+  m.bone_weight.assign(g_count, {1, 0, 0, 0});
+
+  for (size_t i = 0; i < vcount; ++i) {
+    m.rest_pos[i] = widen(a.rest_positions[i]);
+    m.inv_mass[i] = a.rest_positions[i][3];
+  }
+  for (uint32_t g = 0; g < g_count; ++g) {
+    const size_t b = size_t{g} * n;
+    double total = 0;
+    for (uint32_t v = 0; v + 1 < n; ++v) {
+      m.rest_length[b + v] = length(m.rest_pos[b + v + 1] - m.rest_pos[b + v]);
+      m.arc_fraction[b + v] = total;
+      total += m.rest_length[b + v];
+    }
+    m.arc_fraction[b + n - 1] = total;
+    for (uint32_t v = 0; v < n; ++v) m.arc_fraction[b + v] = total > 0 ? m.arc_fraction[b + v] / total : 0.0;
+    m.strand_length[g] = total;
+    const double mean_seg = total / (n - 1);
+    m.root_swing[g] = m.rest_length[b] >= kRootSwingMinRel * mean_seg && m.rest_length[b] > 0 ? 1 : 0;
+
+    const auto& f = a.rest_frames[b];
+    Quat frame = normalize(Quat{f[0], f[1], f[2], f[3]});
+    m.root_frame[g] = frame;
+    for (uint32_t v = 1; v < n; ++v) {
+      double e_in = m.rest_length[b + v - 1];
+      double e_out = m.rest_length[b + v];
+      bool turns = e_in >= kFrameEdgeRatio * e_out && e_in >= kFrameEdgeMinRel * mean_seg && e_in > 0;
+      m.frame_turns[b + v] = turns ? 1 : 0;
+      if (turns) frame = frame_align(frame, m.rest_pos[b + v] - m.rest_pos[b + v - 1], kDirectionEps * e_in);
+      if (v + 1 < n) m.rest_edge_local[b + v] = quat_rotate(conjugate(frame), m.rest_pos[b + v + 1] - m.rest_pos[b + v]);
+    }
+    m.rest_edge_local[b] = quat_rotate(conjugate(m.root_frame[g]), m.rest_pos[b + 1] - m.rest_pos[b]);
+
+    if (!a.guide_group.empty()) {
+      m.group[g] = a.guide_group[g];
+      require(m.group[g] < m.group_count, "guide_group[" + std::to_string(g) + "] names no group");
+    }
+    if (m.bone_count > 0) {
+      const auto& bw = a.bone_weights[g];
+      double sum = 0;
+      for (uint32_t k = 0; k < 4; ++k) {
+        require(bw.weight[k] == 0.0f || bw.bone[k] < m.bone_count,
+                "bone_weights[" + std::to_string(g) + "] names bone " + std::to_string(bw.bone[k]));
+        m.bone_index[g][k] = bw.weight[k] == 0.0f ? 0u : bw.bone[k];
+        m.bone_weight[g][k] = bw.weight[k];
+        sum += bw.weight[k];
+      }
+      require(sum > 0, "bone_weights[" + std::to_string(g) + "] are all zero");
+    }
+  }
+  m.follow_offset.resize(a.follow_offsets.size());
+  for (size_t i = 0; i < a.follow_offsets.size(); ++i) m.follow_offset[i] = widen(a.follow_offsets[i]);
+  return m;
+}
+
+GpuStatic build_gpu_static(const ModelRest& m) {
+  GpuStatic s;
+  const size_t vcount = m.rest_pos.size();
+  s.rest_positions.resize(vcount);
+  s.rest_info.resize(vcount);
+  s.rest_edge_local.resize(vcount);
+  for (size_t i = 0; i < vcount; ++i) {
+    s.rest_positions[i] = narrow(m.rest_pos[i], m.inv_mass[i]);
+    s.rest_info[i] = {static_cast<float>(m.rest_length[i]), static_cast<float>(m.arc_fraction[i]),
+                      m.frame_turns[i] ? 1.0f : 0.0f, 0.0f};
+    s.rest_edge_local[i] = narrow(m.rest_edge_local[i], 0.0);
+  }
+  for (uint32_t g = 0; g < m.guide_count; ++g) {
+    const Quat& q = m.root_frame[g];
+    s.root_frames.push_back({static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z),
+                             static_cast<float>(q.w)});
+    s.guide_info.push_back({m.group[g], m.root_swing[g] ? sim::kGuideRootSwing : 0u,
+                            std::bit_cast<uint32_t>(static_cast<float>(m.strand_length[g])), 0u});
+    if (m.bone_count > 0) {
+      s.bone_indices.push_back(m.bone_index[g]);
+      s.bone_weights.push_back({static_cast<float>(m.bone_weight[g][0]), static_cast<float>(m.bone_weight[g][1]),
+                                static_cast<float>(m.bone_weight[g][2]), static_cast<float>(m.bone_weight[g][3])});
+    }
+  }
+  for (const Vec3& o : m.follow_offset) s.follow_offsets.push_back(narrow(o, 0.0));
+  if (s.follow_offsets.empty()) s.follow_offsets.push_back({0, 0, 0, 0});
+  if (s.bone_indices.empty()) s.bone_indices.push_back({0, 0, 0, 0});
+  if (s.bone_weights.empty()) s.bone_weights.push_back({1, 0, 0, 0});
+  return s;
+}
+
+double median_strand_length(const ModelRest& m) {
+  if (m.strand_length.empty()) return 0.0;
+  std::vector<double> l = m.strand_length;
+  auto mid = l.begin() + static_cast<std::ptrdiff_t>(l.size() / 2);
+  std::nth_element(l.begin(), mid, l.end());
+  return *mid;
+}
+
+}  // namespace tressvk::reference

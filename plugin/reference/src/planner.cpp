@@ -1,0 +1,300 @@
+#include "tressvk/reference/planner.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace tressvk::reference {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("simulation input: " + what);
+}
+
+Vec3 asset_origin_vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+Quat checked_rotation(const double r[4], const char* what) {
+  Quat q{r[0], r[1], r[2], r[3]};
+  double n = std::sqrt(dot(q, q));
+  require(std::isfinite(n) && n > 0.5 && n < 2.0, std::string(what) + " is not a unit quaternion");
+  return normalize(q);
+}
+
+// A bone matrix (float rows, bind space -> instance space) as a rotation and a translation in double.
+struct BonePose {
+  Vec3 t;
+  Quat r;
+};
+
+BonePose bone_pose(const TvkBoneMatrix& m, uint32_t index) {
+  std::array<std::array<double, 3>, 3> rot{};
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j) rot[i][j] = m.rows[i][j];
+  }
+  // Rows must be orthonormal: reject scale and shear instead of simulating something else.
+  for (size_t i = 0; i < 3; ++i) {
+    for (size_t j = 0; j < 3; ++j) {
+      double d = rot[i][0] * rot[j][0] + rot[i][1] * rot[j][1] + rot[i][2] * rot[j][2];
+      require(std::abs(d - (i == j ? 1.0 : 0.0)) < 1e-3,
+              "bones[" + std::to_string(index) + "] is not a rotation (scale or shear)");
+    }
+  }
+  return {{m.rows[0][3], m.rows[1][3], m.rows[2][3]}, quat_from_matrix(rot)};
+}
+
+}  // namespace
+
+FramePlanner::FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count)
+    : settings_(settings), asset_origin_(asset_origin), bone_count_(bone_count) {
+  set_settings(settings);
+}
+
+void FramePlanner::set_settings(const TvkSimSettings& settings) {
+  require(std::isfinite(settings.time.step_rate) && settings.time.step_rate >= 30.0f && settings.time.step_rate <= 480.0f,
+          "time.step_rate must be within 30..480 Hz");
+  require(settings.time.max_steps_per_frame >= 1 && settings.time.max_steps_per_frame <= TVK_MAX_STEPS_PER_FRAME,
+          "time.max_steps_per_frame must be within 1..TVK_MAX_STEPS_PER_FRAME");
+  for (float g : settings.gravity) require(std::isfinite(g), "gravity is not finite");
+  settings_ = settings;
+  h_ = 1.0 / static_cast<double>(settings.time.step_rate);
+}
+
+FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
+  require(std::isfinite(frame.dt) && frame.dt >= 0.0f, "dt must be finite and >= 0");
+  require(frame.capsule_count <= TVK_MAX_CAPSULES, "capsule_count exceeds TVK_MAX_CAPSULES");
+  const bool skinned = frame.bones != nullptr;
+  if (skinned) {
+    require(bone_count_ > 0, "bones given for an asset without bone weights");
+    require(frame.bone_count == bone_count_, "bone_count " + std::to_string(frame.bone_count) +
+                                                 " differs from the asset's " + std::to_string(bone_count_));
+  }
+  for (int i = 0; i < 3; ++i) require(std::isfinite(frame.transform.translation[i]), "transform.translation is not finite");
+  Pose now{{frame.transform.translation[0], frame.transform.translation[1], frame.transform.translation[2]},
+           checked_rotation(frame.transform.rotation, "transform.rotation")};
+  std::vector<Pose> bones_now;
+  if (skinned) {
+    for (uint32_t b = 0; b < frame.bone_count; ++b) {
+      BonePose bp = bone_pose(frame.bones[b], b);
+      bones_now.push_back({bp.t, bp.r});
+    }
+  }
+
+  if (!started_) {
+    started_ = true;
+    pending_reset_ = true;
+    last_ = now;
+  }
+  if (frame.reset) pending_reset_ = true;
+  if (frame.teleport && !pending_reset_) {
+    // The state turns with the instance about the simulation origin: p' = R_now R_last^T p (the asset origin is
+    // part of the origin, so no translation remains). Composed with any teleport not yet applied.
+    pending_turn_ = normalize(quat_mul(quat_mul(now.r, conjugate(last_.r)), pending_turn_));
+    pending_teleport_ = true;
+  }
+  if (frame.teleport || pending_reset_) {
+    last_ = now;
+    last_bones_ = bones_now;
+  }
+  if (last_bones_.size() != bones_now.size()) last_bones_ = bones_now;
+
+  // Accumulate in units of steps; the tiny epsilon makes e.g. 1/60 s at 120 Hz count as exactly 2 steps.
+  accumulator_ += static_cast<double>(frame.dt) * static_cast<double>(settings_.time.step_rate);
+  double whole = std::floor(accumulator_ + 1e-9);
+  uint32_t n = static_cast<uint32_t>(whole);
+  FramePlan plan;
+  plan.skinned = skinned;
+  accumulator_ = std::max(0.0, accumulator_ - whole);
+  if (n > settings_.time.max_steps_per_frame) {
+    plan.dropped_steps = n - settings_.time.max_steps_per_frame;
+    n = settings_.time.max_steps_per_frame;
+  }
+
+  const Vec3 a = asset_origin_vec(asset_origin_);
+  const Vec3 gravity{settings_.gravity[0], settings_.gravity[1], settings_.gravity[2]};
+  const TvkWind& wind = frame.wind;
+  Vec3 wind_dir{wind.direction[0], wind.direction[1], wind.direction[2]};
+  const bool has_wind = wind.strength != 0.0f && length(wind_dir) > 0.0;
+  std::array<Vec3, 4> pyramid{};
+  if (has_wind) {
+    wind_dir = normalize(wind_dir);
+    // Two unit vectors perpendicular to the wind; the pyramid leans cone_angle toward +-u and +-v.
+    Vec3 helper = std::abs(wind_dir.y) < 0.9 ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
+    Vec3 u = normalize(cross(wind_dir, helper));
+    Vec3 v = cross(wind_dir, u);
+    double c = std::cos(static_cast<double>(wind.cone_angle)), s = std::sin(static_cast<double>(wind.cone_angle));
+    pyramid = {c * wind_dir + s * u, c * wind_dir - s * u, c * wind_dir + s * v, c * wind_dir - s * v};
+  }
+
+  auto make_step = [&](const Pose& pose, const std::vector<Pose>& bones, uint32_t index) {
+    Substep st;
+    st.h = h_;
+    st.index = index;
+    st.gravity_h2 = (h_ * h_) * gravity;
+    st.time = static_cast<double>(step_counter_) * h_;
+    if (has_wind) {
+      // Strength gusts in time; each pyramid vector carries half (the shader sums two of them per strand).
+      double strength = static_cast<double>(wind.strength) *
+                        (1.0 + static_cast<double>(wind.gust_amplitude) *
+                                   std::sin(2.0 * std::numbers::pi * static_cast<double>(wind.gust_frequency) * st.time));
+      st.wind = true;
+      for (size_t i = 0; i < 4; ++i) st.wind_h2[i] = (0.5 * strength * h_ * h_) * pyramid[i];
+    }
+    st.capsule_count = frame.capsule_count;
+    for (uint32_t c = 0; c < frame.capsule_count; ++c) {
+      const TvkCapsule& cap = frame.capsules[c];
+      require(cap.r0 >= 0.0f && cap.r1 >= 0.0f, "capsules[" + std::to_string(c) + "] has a negative radius");
+      st.capsules[c].p0 = quat_rotate(pose.r, Vec3{cap.p0[0], cap.p0[1], cap.p0[2]} - a);
+      st.capsules[c].p1 = quat_rotate(pose.r, Vec3{cap.p1[0], cap.p1[1], cap.p1[2]} - a);
+      st.capsules[c].r0 = cap.r0;
+      st.capsules[c].r1 = cap.r1;
+    }
+    auto transform = [&](Quat rot, Vec3 lin) {
+      SkinTransform t;
+      t.rotation = rot;
+      auto m = matrix_from_quat(rot);
+      for (size_t r = 0; r < 3; ++r) {
+        for (size_t c = 0; c < 3; ++c) t.rows[r][c] = m[r][c];
+        t.rows[r][3] = lin[static_cast<int>(r)];
+      }
+      return t;
+    };
+    if (skinned) {
+      // asset point x (relative to the asset origin a) -> instance R_b (a + x) + t_b -> simulation space
+      // R (R_b (a + x) + t_b) + T - (T + R a) = R R_b x + R (R_b a + t_b - a).
+      for (const Pose& b : bones) {
+        st.skin.push_back(transform(normalize(quat_mul(pose.r, b.r)),
+                                    quat_rotate(pose.r, quat_rotate(b.r, a) + b.t - a)));
+      }
+    } else {
+      st.skin.push_back(transform(pose.r, Vec3{}));
+    }
+    return st;
+  };
+
+  uint32_t index = 0;
+  if (pending_reset_) {
+    // A reset step takes no time: it only places the state; the frame's whole steps follow.
+    Substep st = make_step(now, bones_now, index++);
+    st.reset = true;
+    plan.steps.push_back(st);
+    pending_reset_ = false;
+    pending_teleport_ = false;
+    pending_turn_ = Quat{};
+  }
+
+  Pose prev_pose = last_;
+  for (uint32_t k = 1; k <= n; ++k) {
+    double alpha = static_cast<double>(k) / static_cast<double>(n);
+    Pose pose{mix(last_.t, now.t, alpha), slerp(last_.r, now.r, alpha)};
+    if (k == n) pose = now;
+    std::vector<Pose> bones;
+    for (size_t b = 0; b < bones_now.size(); ++b) {
+      bones.push_back(k == n ? bones_now[b]
+                             : Pose{mix(last_bones_[b].t, bones_now[b].t, alpha),
+                                    slerp(last_bones_[b].r, bones_now[b].r, alpha)});
+    }
+    ++step_counter_;
+    Substep st = make_step(pose, bones, index++);
+    // The origin moved by (T_k - T_{k-1}) + (R_k a - R_{k-1} a); the two parts are formed separately so that a
+    // far translation cancels exactly.
+    st.origin_shift = (pose.t - prev_pose.t) + (quat_rotate(pose.r, a) - quat_rotate(prev_pose.r, a));
+    if (pending_teleport_) {
+      st.teleport = pending_turn_;
+      pending_teleport_ = false;
+      pending_turn_ = Quat{};
+    }
+    st.move_state = dot(st.origin_shift, st.origin_shift) > 0.0 || st.teleport.w != 1.0;
+    plan.steps.push_back(st);
+    prev_pose = pose;
+  }
+  if (n > 0) {
+    last_ = now;
+    last_bones_ = bones_now;
+  }
+  Vec3 o = prev_pose.t + quat_rotate(prev_pose.r, a);
+  if (n == 0 && !plan.steps.empty()) o = now.t + quat_rotate(now.r, a);
+  plan.sim_origin = {o.x, o.y, o.z};
+  return plan;
+}
+
+GroupStep to_group_step(const TvkSimParams& p, double h, double asset_tip_separation) {
+  auto in01 = [](float x) { return std::isfinite(x) && x >= 0.0f && x <= 1.0f; };
+  require(std::isfinite(p.damping) && p.damping >= 0.0f, "params.damping must be >= 0");
+  require(in01(p.global_stiffness), "params.global_stiffness must be within 0..1");
+  require(in01(p.global_range), "params.global_range must be within 0..1");
+  require(in01(p.local_stiffness), "params.local_stiffness must be within 0..1");
+  require(p.local_iterations <= TVK_MAX_ITERATIONS, "params.local_iterations exceeds TVK_MAX_ITERATIONS");
+  require(p.length_iterations >= 1 && p.length_iterations <= TVK_MAX_ITERATIONS,
+          "params.length_iterations must be within 1..TVK_MAX_ITERATIONS");
+  require(in01(p.vsp_coefficient), "params.vsp_coefficient must be within 0..1");
+  require(std::isfinite(p.vsp_threshold) && p.vsp_threshold > 0.0f, "params.vsp_threshold must be > 0");
+  require(std::isfinite(p.max_speed) && p.max_speed >= 0.0f, "params.max_speed must be >= 0");
+  require(std::isfinite(p.tip_separation), "params.tip_separation is not finite");
+  GroupStep g;
+  g.velocity_keep = std::exp(-static_cast<double>(p.damping) * h * 60.0);
+  bool global = p.global_stiffness > 0.0f && p.global_range > 0.0f;
+  g.global_stiffness = global ? p.global_stiffness : 0.0;
+  g.global_range = global ? p.global_range : 0.0;
+  bool local = p.local_stiffness > 0.0f && p.local_iterations > 0;
+  g.local_stiffness = local ? 0.5 * std::min(static_cast<double>(p.local_stiffness), 0.95) : 0.0;
+  g.local_iterations = local ? p.local_iterations : 0u;
+  g.length_iterations = p.length_iterations;
+  g.vsp_coefficient = p.vsp_coefficient;
+  g.vsp_threshold = static_cast<double>(p.vsp_threshold) * h * h;
+  g.max_step = static_cast<double>(p.max_speed) * h;
+  g.tip_separation = p.tip_separation < 0.0f ? asset_tip_separation : static_cast<double>(p.tip_separation);
+  return g;
+}
+
+namespace {
+sim::Vec4 f4(Vec3 v, double w) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z), static_cast<float>(w)};
+}
+sim::Vec4 f4(Quat q) {
+  return {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z), static_cast<float>(q.w)};
+}
+}  // namespace
+
+GpuFrame to_gpu(const FramePlan& plan) {
+  GpuFrame out;
+  out.skin_stride = plan.steps.empty() ? 0u : static_cast<uint32_t>(plan.steps.front().skin.size() * sim::kSkinVec4PerBone);
+  for (const Substep& st : plan.steps) {
+    sim::StepParams p{};
+    p.gravity = f4(st.gravity_h2, st.h);
+    p.origin_shift = f4(st.origin_shift, 0.0);
+    p.teleport = f4(st.teleport);
+    p.flags = {(st.reset ? sim::kStepReset : 0u) | (st.move_state ? sim::kStepMoveState : 0u), st.index, 0u, 0u};
+    for (size_t i = 0; i < 4; ++i) p.wind[i] = f4(st.wind_h2[i], 0.0);
+    for (uint32_t c = 0; c < st.capsule_count; ++c) {
+      p.capsule[2 * c] = f4(st.capsules[c].p0, st.capsules[c].r0);
+      p.capsule[2 * c + 1] = f4(st.capsules[c].p1, st.capsules[c].r1);
+    }
+    out.steps.push_back(p);
+    for (const SkinTransform& t : st.skin) {
+      for (size_t r = 0; r < 3; ++r) {
+        out.skin.push_back({static_cast<float>(t.rows[r][0]), static_cast<float>(t.rows[r][1]),
+                            static_cast<float>(t.rows[r][2]), static_cast<float>(t.rows[r][3])});
+      }
+      out.skin.push_back(f4(t.rotation));
+    }
+  }
+  return out;
+}
+
+sim::GroupParams to_gpu(const GroupStep& g) {
+  sim::GroupParams p{};
+  p.velocity_keep = static_cast<float>(g.velocity_keep);
+  p.global_stiffness = static_cast<float>(g.global_stiffness);
+  p.global_range = static_cast<float>(g.global_range);
+  p.local_stiffness = static_cast<float>(g.local_stiffness);
+  p.local_iterations = g.local_iterations;
+  p.length_iterations = g.length_iterations;
+  p.vsp_coefficient = static_cast<float>(g.vsp_coefficient);
+  p.vsp_threshold = static_cast<float>(g.vsp_threshold);
+  p.max_step = static_cast<float>(g.max_step);
+  p.tip_separation = static_cast<float>(g.tip_separation);
+  return p;
+}
+
+}  // namespace tressvk::reference

@@ -1,0 +1,326 @@
+#include "tressvk/reference/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace tressvk::reference {
+
+Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
+                     const TvkSimSettings& settings)
+    : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count) {
+  set_params(group_params);
+  median_length_ = reference::median_strand_length(rest_);
+  const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
+  pos_.assign(n_all, Vec3{});
+  tangent_.assign(n_all, Vec3{});
+  prev_.assign(rest_.rest_pos.size(), Vec3{});
+  prevprev_.assign(rest_.rest_pos.size(), Vec3{});
+}
+
+void Simulator::set_params(std::span<const TvkSimParams> group_params) {
+  if (group_params.empty()) throw std::invalid_argument("reference: no group parameters given");
+  params_.assign(group_params.begin(), group_params.end());
+  if (params_.size() == 1 && rest_.group_count > 1) params_.resize(rest_.group_count, params_.front());
+  if (params_.size() < rest_.group_count) {
+    throw std::invalid_argument("reference: " + std::to_string(params_.size()) + " group parameter sets for " +
+                                std::to_string(rest_.group_count) + " strand groups");
+  }
+  prepared_h_ = -1;
+  prepare_groups(planner_.step_length());
+}
+
+void Simulator::prepare_groups(double h) {
+  if (h == prepared_h_) return;
+  steps_params_.clear();
+  for (const TvkSimParams& p : params_) steps_params_.push_back(to_group_step(p, h, rest_.asset_tip_separation));
+  prepared_h_ = h;
+}
+
+void Simulator::set_state(std::span<const sim::Vec4> pos, std::span<const sim::Vec4> prev,
+                          std::span<const sim::Vec4> prevprev) {
+  const size_t guides = rest_.rest_pos.size();
+  if ((pos.size() != guides && pos.size() != pos_.size()) || prev.size() != guides || prevprev.size() != guides) {
+    throw std::invalid_argument("reference: set_state sizes do not match the asset");
+  }
+  auto widen = [](const sim::Vec4& v) { return Vec3{v[0], v[1], v[2]}; };
+  for (size_t i = 0; i < pos.size(); ++i) pos_[i] = widen(pos[i]);
+  for (size_t i = 0; i < guides; ++i) {
+    prev_[i] = widen(prev[i]);
+    prevprev_[i] = widen(prevprev[i]);
+  }
+}
+
+FramePlan Simulator::advance(const TvkSimFrame& frame) {
+  FramePlan plan = planner_.plan(frame);
+  simulate(plan);
+  return plan;
+}
+
+void Simulator::simulate(const FramePlan& plan) {
+  bool any_vsp = false, any_local = false;
+  for (const Substep& st : plan.steps) {
+    prepare_groups(st.h);
+    any_vsp = any_local = false;
+    for (const GroupStep& g : steps_params_) {
+      any_vsp = any_vsp || g.vsp_coefficient > 0;
+      any_local = any_local || g.local_iterations > 0;
+    }
+    integrate(st);
+    if (any_vsp) vsp(st);
+    if (any_local) local_shape(st);
+    length_and_collision(st);
+  }
+  if (!plan.steps.empty() && rest_.follow_per_guide > 0) follow(plan.steps.back());
+}
+
+Vec3 Simulator::skinned_rest(const Substep& st, size_t i) const {
+  const uint32_t n = rest_.vertices_per_strand;
+  const Vec3 x = rest_.rest_pos[i];
+  if (st.skin.size() > 1) {
+    const uint32_t g = static_cast<uint32_t>(i / n);
+    std::array<std::array<double, 4>, 3> r{};
+    for (size_t k = 0; k < 4; ++k) {
+      double w = rest_.bone_weight[g][k];
+      if (w == 0.0) continue;
+      const SkinTransform& t = st.skin[rest_.bone_index[g][k]];
+      for (size_t row = 0; row < 3; ++row) {
+        for (size_t c = 0; c < 4; ++c) r[row][c] += w * t.rows[row][c];
+      }
+    }
+    return {r[0][0] * x.x + r[0][1] * x.y + r[0][2] * x.z + r[0][3],
+            r[1][0] * x.x + r[1][1] * x.y + r[1][2] * x.z + r[1][3],
+            r[2][0] * x.x + r[2][1] * x.y + r[2][2] * x.z + r[2][3]};
+  }
+  return st.skin.front().apply(x);
+}
+
+Quat Simulator::skin_rotation(const Substep& st, uint32_t g) const {
+  if (st.skin.size() > 1) {
+    const Quat q0 = st.skin[rest_.bone_index[g][0]].rotation;
+    Quat q{0, 0, 0, 0};
+    for (size_t k = 0; k < 4; ++k) {
+      double w = rest_.bone_weight[g][k];
+      if (w == 0.0) continue;
+      const Quat qi = st.skin[rest_.bone_index[g][k]].rotation;
+      double s = dot(qi, q0) < 0.0 ? -w : w;
+      q = {q.x + s * qi.x, q.y + s * qi.y, q.z + s * qi.z, q.w + s * qi.w};
+    }
+    return normalize(q);
+  }
+  return st.skin.front().rotation;
+}
+
+Quat Simulator::current_root_frame(const Substep& st, uint32_t g) const {
+  const size_t b = size_t{g} * rest_.vertices_per_strand;
+  Quat f = quat_mul(skin_rotation(st, g), rest_.root_frame[g]);
+  if (rest_.frame_turns[b + 1]) f = frame_align(f, pos_[b + 1] - pos_[b], kDirectionEps * rest_.rest_length[b]);
+  return f;
+}
+
+void Simulator::integrate(const Substep& st) {
+  const size_t count = rest_.rest_pos.size();
+  const uint32_t n = rest_.vertices_per_strand;
+  for (size_t i = 0; i < count; ++i) {
+    const Vec3 goal = skinned_rest(st, i);
+    const double w = rest_.inv_mass[i];
+    if (st.reset) {
+      pos_[i] = prev_[i] = prevprev_[i] = goal;
+      continue;
+    }
+    Vec3 p = pos_[i], q = prev_[i], r = prevprev_[i];
+    if (st.move_state) {
+      p = quat_rotate(st.teleport, p - st.origin_shift);
+      q = quat_rotate(st.teleport, q - st.origin_shift);
+      r = quat_rotate(st.teleport, r - st.origin_shift);
+    }
+    Vec3 next;
+    if (w > 0.0) {
+      const GroupStep& gp = group_of(static_cast<uint32_t>(i / n));
+      next = p + gp.velocity_keep * (p - q) + st.gravity_h2;
+      // The range test is a static decision; made on the float values the GPU compares, so both agree.
+      if (gp.global_stiffness > 0.0 &&
+          static_cast<float>(rest_.arc_fraction[i]) <= static_cast<float>(gp.global_range)) {
+        next += gp.global_stiffness * (goal - next);
+      }
+    } else {
+      next = goal;
+    }
+    prevprev_[i] = q;
+    prev_[i] = p;
+    pos_[i] = next;
+  }
+}
+
+void Simulator::vsp(const Substep&) {
+  const uint32_t n = rest_.vertices_per_strand;
+  for (uint32_t g = 0; g < rest_.guide_count; ++g) {
+    const GroupStep& gp = group_of(g);
+    if (!(gp.vsp_coefficient > 0.0)) continue;
+    const size_t b = size_t{g} * n;
+    // Every vertex of the strand reads the root state of this step before any vertex is written (the GPU
+    // threads never write vertices 0 and 1, so the order does not matter there either).
+    const Vec3 p0 = pos_[b], p1 = pos_[b + 1], q0 = prev_[b], q1 = prev_[b + 1], r1 = prevprev_[b + 1];
+    const double accel = length((p1 - q1) - (q1 - r1));
+    const double ramp = std::clamp((accel - 0.75 * gp.vsp_threshold) / (0.25 * gp.vsp_threshold), 0.0, 1.0);
+    const double c = gp.vsp_coefficient + ramp * (1.0 - gp.vsp_coefficient);
+    Quat swing;
+    if (rest_.root_swing[g]) {
+      const Vec3 u = q1 - q0, w = p1 - p0;
+      const double min_len = kDirectionEps * rest_.rest_length[b];
+      const double lu = length(u), lw = length(w);
+      if (lu > min_len && lw > min_len) swing = quat_from_two_unit(u / lu, w / lw);
+    }
+    const Vec3 t = p0 - q0;
+    for (uint32_t v = 2; v < n; ++v) {
+      const size_t i = b + v;
+      if (!(rest_.inv_mass[i] > 0.0)) continue;
+      const Vec3 dx = t + quat_rotate_delta(swing, pos_[i] - q0);
+      const Vec3 dy = t + quat_rotate_delta(swing, prev_[i] - q0);
+      pos_[i] = pos_[i] + c * dx;
+      prev_[i] = prev_[i] + c * dy;
+    }
+  }
+}
+
+void Simulator::local_shape(const Substep& st) {
+  const uint32_t n = rest_.vertices_per_strand;
+  for (uint32_t g = 0; g < rest_.guide_count; ++g) {
+    const GroupStep& gp = group_of(g);
+    const double s = gp.local_stiffness;
+    const size_t b = size_t{g} * n;
+    const Quat root = quat_mul(skin_rotation(st, g), rest_.root_frame[g]);
+    for (uint32_t it = 0; it < gp.local_iterations; ++it) {
+      Quat f = root;
+      for (uint32_t v = 1; v + 1 < n; ++v) {
+        if (rest_.frame_turns[b + v]) {
+          f = frame_align(f, pos_[b + v] - pos_[b + v - 1], kDirectionEps * rest_.rest_length[b + v - 1]);
+        }
+        const Vec3 target = pos_[b + v] + quat_rotate(f, rest_.rest_edge_local[b + v]);
+        const Vec3 d = s * (target - pos_[b + v + 1]);
+        if (rest_.inv_mass[b + v] > 0.0) pos_[b + v] -= d;
+        if (rest_.inv_mass[b + v + 1] > 0.0) pos_[b + v + 1] += d;
+      }
+    }
+  }
+}
+
+void Simulator::length_and_collision(const Substep& st) {
+  const uint32_t n = rest_.vertices_per_strand;
+  for (uint32_t g = 0; g < rest_.guide_count; ++g) {
+    const GroupStep& gp = group_of(g);
+    const size_t b = size_t{g} * n;
+    auto movable = [&](size_t i) { return rest_.inv_mass[i] > 0.0; };
+
+    if (st.wind) {
+      const double a = static_cast<double>(g % 20u) / 20.0;
+      const Vec3 w = a * (st.wind_h2[0] + st.wind_h2[2]) + (1.0 - a) * (st.wind_h2[1] + st.wind_h2[3]);
+      for (uint32_t v = 1; v < n; ++v) {
+        if (!movable(b + v)) continue;
+        const Vec3 e = pos_[b + v] - pos_[b + v - 1];
+        const double len = length(e);
+        Vec3 push = w;
+        if (len > kDirectionEps * rest_.rest_length[b + v - 1]) {
+          const Vec3 t = e / len;
+          push = w - dot(w, t) * t;
+        }
+        pos_[b + v] += push;
+      }
+    }
+
+    for (uint32_t it = 0; it < gp.length_iterations; ++it) {
+      for (uint32_t v = 0; v + 1 < n; ++v) {
+        const double wa = movable(b + v) ? 1.0 : 0.0;
+        const double wb = movable(b + v + 1) ? 1.0 : 0.0;
+        const double wsum = wa + wb;
+        if (wsum == 0.0) continue;
+        const Vec3 d = pos_[b + v + 1] - pos_[b + v];
+        const double len = length(d);
+        if (!(len > 0.0)) continue;
+        const Vec3 corr = ((len - rest_.rest_length[b + v]) / (len * wsum)) * d;
+        if (movable(b + v)) pos_[b + v] += wa * corr;
+        if (movable(b + v + 1)) pos_[b + v + 1] -= wb * corr;
+      }
+    }
+
+    for (uint32_t v = 0; v < n && st.capsule_count > 0; ++v) {
+      const size_t i = b + v;
+      if (!movable(i)) continue;
+      Vec3 x = pos_[i], y = prev_[i];
+      bool hit = false;
+      for (uint32_t c = 0; c < st.capsule_count; ++c) {
+        const CapsuleSim& cap = st.capsules[c];
+        const Vec3 axis = cap.p1 - cap.p0;
+        const double aa = dot(axis, axis);
+        const double t = aa > 0.0 ? std::clamp(dot(x - cap.p0, axis) / aa, 0.0, 1.0) : 0.0;
+        const Vec3 centre = cap.p0 + t * axis;
+        const double radius = cap.r0 + t * (cap.r1 - cap.r0);
+        const Vec3 d = x - centre;
+        const double dist = length(d);
+        if (!(dist < radius)) continue;
+        Vec3 nrm;
+        if (dist > kDirectionEps * radius) {
+          nrm = d / dist;
+        } else {
+          const Vec3 back = y - centre;
+          const double bl = length(back);
+          nrm = bl > kDirectionEps * radius ? back / bl : Vec3{0, 1, 0};
+        }
+        x = centre + radius * nrm;
+        const double vn = dot(x - y, nrm);
+        if (vn < 0.0) y += vn * nrm;
+        hit = true;
+      }
+      if (hit) {
+        pos_[i] = x;
+        prev_[i] = y;
+      }
+    }
+
+    if (gp.max_step > 0.0) {
+      for (uint32_t v = 0; v < n; ++v) {
+        const size_t i = b + v;
+        if (!movable(i)) continue;
+        const Vec3 stepv = pos_[i] - prev_[i];
+        const double len = length(stepv);
+        if (len > gp.max_step) prev_[i] = pos_[i] - stepv * (gp.max_step / len);
+      }
+    }
+
+    bool ok = true;
+    for (uint32_t v = 0; v < n; ++v) ok = ok && is_finite(pos_[b + v]) && is_finite(prev_[b + v]);
+    if (!ok) {
+      for (uint32_t v = 0; v < n; ++v) pos_[b + v] = prev_[b + v] = prevprev_[b + v] = skinned_rest(st, b + v);
+      ++nonfinite_resets_;
+    }
+
+    const double min_len = kDirectionEps * rest_.strand_length[g] / static_cast<double>(n - 1);
+    Vec3 last = quat_rotate(current_root_frame(st, g), Vec3{1, 0, 0});
+    for (uint32_t v = 0; v < n; ++v) {
+      const Vec3 e = v + 1 < n ? pos_[b + v + 1] - pos_[b + v] : pos_[b + v] - pos_[b + v - 1];
+      const double len = length(e);
+      if (len > min_len) last = e / len;
+      tangent_[b + v] = last;
+    }
+  }
+}
+
+void Simulator::follow(const Substep& st) {
+  const uint32_t n = rest_.vertices_per_strand, k = rest_.follow_per_guide, gc = rest_.guide_count;
+  for (uint32_t f = 0; f < k; ++f) {
+    for (uint32_t g = 0; g < gc; ++g) {
+      const GroupStep& gp = group_of(g);
+      const Vec3 offset = quat_rotate(current_root_frame(st, g), rest_.follow_offset[size_t{g} * k + f]);
+      for (uint32_t v = 0; v < n; ++v) {
+        const double spread = 1.0 + gp.tip_separation * static_cast<double>(v) / static_cast<double>(n - 1);
+        const size_t src = size_t{g} * n + v;
+        const size_t dst = (size_t{f + 1} * gc + g) * n + v;
+        pos_[dst] = pos_[src] + spread * offset;
+        tangent_[dst] = tangent_[src];
+      }
+    }
+  }
+}
+
+}  // namespace tressvk::reference
