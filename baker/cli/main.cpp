@@ -187,10 +187,10 @@ int run_bake(CliState& s) {
   const asset::HairAsset a = baker::bake(groom, s.bake, &rep);
   const auto problems = asset::validate(a);
   if (!problems.empty()) throw std::runtime_error("internal error: the baked asset is inconsistent: " + problems.front());
-  const auto bytes = asset::write(a);
+  asset::FileInfo info;
+  const auto bytes = asset::write(a, &info);
   const auto err = asset::write_file(s.output, bytes);
   if (!err.empty()) throw baker::IoError(err);
-  const auto info = asset::inspect(bytes).info;
 
   if (!s.quiet) {
     if (rep.dropped_short)

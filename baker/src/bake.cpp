@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 
 namespace tressvk::baker {
@@ -123,7 +124,11 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
 
   // 1. Units and axes first, so every threshold below is in metres of the final asset.
   std::vector<Vec3> pts(groom.points.size());
-  for (size_t i = 0; i < pts.size(); ++i) pts[i] = convert(groom.points[i], o);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    pts[i] = convert(groom.points[i], o);
+    if (!std::isfinite(pts[i][0]) || !std::isfinite(pts[i][1]) || !std::isfinite(pts[i][2]))
+      throw InputError("a coordinate overflows after unit conversion and scaling (vertex " + std::to_string(i) + ")");
+  }
   const size_t strands = groom.strand_count();
 
   // 2. Scale-aware tolerances from the groom itself.
@@ -155,6 +160,8 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
       c.push_back(pts[i]);
     }
     for (size_t i = 1; i < c.size(); ++i) strand_length[s] += length(c[i] - c[i - 1]);
+    if (!std::isfinite(strand_length[s]))
+      throw InputError("strand " + std::to_string(s) + ": its length overflows (coordinates far out of range)");
   }
   {
     std::vector<double> lengths;
@@ -236,6 +243,12 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
       const bool pinned = v < pin || (pin_tip && v + pin >= n);
       a.rest_positions[k * n + v] = {f[0], f[1], f[2], pinned ? 0.0f : 1.0f};
     }
+    // Every segment must survive as a normal float32 length (subnormals lose their relative precision).
+    for (uint32_t v = 0; v + 1 < n; ++v)
+      if (!(length(p[v + 1] - p[v]) >= std::numeric_limits<float>::min()))
+        throw InputError("strand " + std::to_string(kept[k]) + ": its segments vanish in float32 at a distance of " +
+                         std::to_string(length(p[v])) + " m from the asset origin (the groom spans too wide a range " +
+                         "for its strand sizes; check for stray far-away vertices)");
     rest_frames(p, frames, edges);
     for (uint32_t v = 0; v < n; ++v) {
       a.rest_lengths[k * n + v] = v + 1 < n ? static_cast<float>(length(p[v + 1] - p[v])) : 0.0f;

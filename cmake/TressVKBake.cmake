@@ -1,0 +1,47 @@
+# tressvk_bake_hair(OUTPUT <file.tvkhair> INPUT <file> [<file>...] [TARGET <name>] [OPTIONS <tressvk-bake options>...]
+#                   [DEPENDS <extra files>...])
+#
+# Adds a build rule that bakes hair with tressvk-bake. It re-runs when an input, an extra dependency or the baker
+# itself changes; since bakes are deterministic, unchanged inputs give unchanged bytes and build caches work.
+# Relative INPUT paths are taken from the current source directory, a relative OUTPUT from the current binary
+# directory. With TARGET, a target of that name (built by default) owns the output; otherwise list the output in
+# the sources or DEPENDS of something you build. Works in the TressVK tree (the `tressvk-bake` target) and from an
+# installed package (`find_package(TressVK)` provides the imported `tressvk::tressvk-bake`).
+#
+# Example: tressvk_bake_hair(OUTPUT hair.tvkhair INPUT hair.obj TARGET bake_hair OPTIONS --vertices 24 --follow 2)
+function(tressvk_bake_hair)
+  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "OUTPUT;TARGET" "INPUT;OPTIONS;DEPENDS")
+  if(NOT ARG_OUTPUT OR NOT ARG_INPUT)
+    message(FATAL_ERROR "tressvk_bake_hair: OUTPUT and INPUT are required")
+  endif()
+  if(ARG_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "tressvk_bake_hair: unexpected arguments: ${ARG_UNPARSED_ARGUMENTS}")
+  endif()
+  if(TARGET tressvk-bake)
+    set(baker tressvk-bake)
+    set(baker_dependency tressvk-bake)  # target-level and file-level: re-bake when the baker is rebuilt
+  elseif(TARGET tressvk::tressvk-bake)
+    set(baker tressvk::tressvk-bake)
+    set(baker_dependency "$<TARGET_FILE:tressvk::tressvk-bake>")
+  else()
+    message(FATAL_ERROR "tressvk_bake_hair: no tressvk-bake target (find_package(TressVK) first)")
+  endif()
+  cmake_path(ABSOLUTE_PATH ARG_OUTPUT BASE_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}" OUTPUT_VARIABLE output)
+  set(inputs "")
+  foreach(input IN LISTS ARG_INPUT)
+    cmake_path(ABSOLUTE_PATH input BASE_DIRECTORY "${CMAKE_CURRENT_SOURCE_DIR}" OUTPUT_VARIABLE abs)
+    list(APPEND inputs "${abs}")
+  endforeach()
+  cmake_path(GET output PARENT_PATH output_dir)
+  cmake_path(GET output FILENAME output_name)
+  add_custom_command(
+    OUTPUT "${output}"
+    COMMAND "${CMAKE_COMMAND}" -E make_directory "${output_dir}"
+    COMMAND ${baker} ${inputs} -o "${output}" --quiet ${ARG_OPTIONS}
+    DEPENDS ${inputs} ${ARG_DEPENDS} ${baker_dependency}
+    COMMENT "Baking hair ${output_name}"
+    VERBATIM)
+  if(ARG_TARGET)
+    add_custom_target(${ARG_TARGET} ALL DEPENDS "${output}")
+  endif()
+endfunction()
