@@ -79,7 +79,7 @@ PendingSection bone_section(const std::vector<BoneInfluences>& bones) {
 
 }  // namespace
 
-std::vector<std::byte> write(const HairAsset& a) {
+std::vector<std::byte> write(const HairAsset& a, FileInfo* info_out) {
   std::vector<PendingSection> sections;
   sections.push_back(meta_section(a));
   sections.push_back(raw_section(kRestPositions, a.rest_positions));
@@ -100,6 +100,7 @@ std::vector<std::byte> write(const HairAsset& a) {
   }
   const uint64_t file_size = cursor;
 
+  if (info_out) *info_out = FileInfo{};
   std::vector<std::byte> out(file_size, std::byte{0});  // padding stays zero; the reader insists on it
   std::span<std::byte> o(out);
   std::memcpy(out.data(), kMagic, sizeof(kMagic));
@@ -119,11 +120,20 @@ std::vector<std::byte> write(const HairAsset& a) {
     store(o, e + kEntSize, static_cast<uint64_t>(s.bytes.size()));
     store(o, e + kEntStride, s.stride);
     store(o, e + kEntCount, s.count);
-    store(o, e + kEntCrc, crc32(s.bytes));
+    const uint32_t crc = crc32(s.bytes);
+    store(o, e + kEntCrc, crc);
+    if (info_out)
+      info_out->sections.push_back({fourcc_name(s.id), s.id, offsets[i], s.bytes.size(), s.stride, s.count, crc, crc, true});
     if (!s.bytes.empty()) std::memcpy(out.data() + offsets[i], s.bytes.data(), s.bytes.size());
   }
   store(o, kOffTableCrc, crc32(o.subspan(table_offset, sections.size() * kTableEntrySize)));
   store(o, kOffHeaderCrc, crc32(o.subspan(0, kHeaderSize)));  // computed with its own field still zero
+  if (info_out) {
+    info_out->major = kFormatMajor;
+    info_out->minor = kFormatMinor;
+    info_out->file_size = file_size;
+    info_out->checksums_ok = true;
+  }
   return out;
 }
 

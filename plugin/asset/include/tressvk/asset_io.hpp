@@ -65,8 +65,9 @@ ReadResult read(std::span<const std::byte> bytes);
 ReadResult read_file(const std::filesystem::path& path);
 
 // Serialises an asset. The bytes depend only on the asset (no time stamps, no paths). The asset should pass
-// validate(); write() does not check it.
-std::vector<std::byte> write(const HairAsset& asset);
+// validate(); write() does not check it. `info_out`, when given, receives the header and section table written
+// (as inspect() would report them, without a second checksum pass).
+std::vector<std::byte> write(const HairAsset& asset, FileInfo* info_out = nullptr);
 
 // Writes to a temporary file beside `path` and renames it into place, so a failure never leaves a partial file.
 // Returns an empty string on success, otherwise an I/O error message naming the file.
