@@ -8,11 +8,13 @@
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/png.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -61,13 +63,22 @@ int run(const tressvk::demo::Options& options) {
 
     demo::DemoRenderer renderer(device, options.width, options.height);
     const std::filesystem::path out_dir = std::filesystem::absolute(options.out_dir);
+    std::vector<double> gpu_ms;
     for (uint32_t f = 0; f < options.frames; ++f) {
       demo::FrameResult frame = renderer.render(f);
       engine::write_png(out_dir / frame_name(f), frame.pixels);
-      if (frame.gpu_ms)
+      if (frame.gpu_ms) {
         std::printf("frame %u: GPU %.3f ms\n", f, *frame.gpu_ms);
-      else
+        gpu_ms.push_back(*frame.gpu_ms);
+      } else {
         std::printf("frame %u: GPU time unavailable (no timestamps on this queue)\n", f);
+      }
+    }
+    if (gpu_ms.size() > 1) {
+      // The first frame pays for shader compilation (lavapipe JITs on first use), so the median says more.
+      std::sort(gpu_ms.begin(), gpu_ms.end());
+      std::printf("GPU time per frame: median %.3f ms, min %.3f ms, max %.3f ms over %zu frames\n",
+                  gpu_ms[gpu_ms.size() / 2], gpu_ms.front(), gpu_ms.back(), gpu_ms.size());
     }
     device.wait_idle();
     std::printf("wrote %u frame(s) of %ux%u to %s\n", options.frames, options.width, options.height,
