@@ -1,6 +1,7 @@
-// Pass 4, one thread per guide: wind, length constraints (root-to-tip Gauss-Seidel sweeps), capsule
-// collision, velocity clamp, the non-finite check (a strand that went NaN/Inf is reset to its skinned rest pose
-// and counted, so it never spreads), and tangents. Terms not compiled in (FEATURES, CAPSULE_COUNT) cost nothing.
+// Pass 4, one thread per guide: wind, capsule collision, length constraints (root-to-tip Gauss-Seidel sweeps,
+// the last one follow-the-leader, so a collision push never leaves a stretched segment), velocity clamp, the
+// non-finite check (a strand that went NaN/Inf is reset to its skinned rest pose and counted, so it never
+// spreads), and tangents. Terms not compiled in (FEATURES, CAPSULE_COUNT) cost nothing.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "sim/common.glsl"
@@ -31,23 +32,6 @@ void main() {
         push = w - dot(w, t) * t;
       }
       pos[b + v] = vec4(p.xyz + push, p.w);
-    }
-  }
-
-  for (uint it = 0u; it < gp.length_iterations; ++it) {
-    for (uint v = 0u; v + 1u < N; ++v) {
-      vec4 p = pos[b + v];
-      vec4 n = pos[b + v + 1u];
-      float wa = p.w > 0.0 ? 1.0 : 0.0;
-      float wb = n.w > 0.0 ? 1.0 : 0.0;
-      float wsum = wa + wb;
-      if (wsum == 0.0) continue;
-      vec3 d = n.xyz - p.xyz;
-      float len = length(d);
-      if (!(len > 0.0)) continue;
-      vec3 corr = ((len - rest_info[b + v].x) / (len * wsum)) * d;
-      if (p.w > 0.0) pos[b + v] = vec4(p.xyz + wa * corr, p.w);
-      if (n.w > 0.0) pos[b + v + 1u] = vec4(n.xyz - wb * corr, n.w);
     }
   }
 
@@ -88,6 +72,26 @@ void main() {
         pos[b + v] = vec4(x, p.w);
         prev[b + v] = vec4(y, p.w);
       }
+    }
+  }
+
+  for (uint it = 0u; it < gp.length_iterations; ++it) {
+    bool last_sweep = it + 1u == gp.length_iterations;
+    for (uint v = 0u; v + 1u < N; ++v) {
+      vec4 p = pos[b + v];
+      vec4 n = pos[b + v + 1u];
+      float wb = n.w > 0.0 ? 1.0 : 0.0;
+      // The last sweep moves only the tip-ward end (follow the leader), so every step ends with each segment
+      // at its rest length; the sweeps before it share the correction between both ends.
+      float wa = (p.w > 0.0 && !(last_sweep && wb > 0.0)) ? 1.0 : 0.0;
+      float wsum = wa + wb;
+      if (wsum == 0.0) continue;
+      vec3 d = n.xyz - p.xyz;
+      float len = length(d);
+      if (!(len > 0.0)) continue;
+      vec3 corr = ((len - rest_info[b + v].x) / (len * wsum)) * d;
+      if (wa > 0.0) pos[b + v] = vec4(p.xyz + wa * corr, p.w);
+      if (wb > 0.0) pos[b + v + 1u] = vec4(n.xyz - wb * corr, n.w);
     }
   }
 

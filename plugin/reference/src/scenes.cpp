@@ -138,7 +138,7 @@ TvkSimFrame scene_frame(std::string_view name, uint32_t frame_index, const Scene
     const Vec3 c = geo.head_centre;
     f.capsule_count = 2;
     set_capsule(f.capsules[0], c - 0.25 * r * up, 0.95 * r, c, 0.95 * r);
-    set_capsule(f.capsules[1], c + Vec3{-2.2 * r, -2.4 * r, 0}, 0.7 * r, c + Vec3{2.2 * r, -2.4 * r, 0}, 0.7 * r);
+    set_capsule(f.capsules[1], c + Vec3{-3.0 * r, -2.8 * r, 0}, 0.6 * r, c + Vec3{3.0 * r, -2.8 * r, 0}, 0.6 * r);
   } else if (name == "teleport") {
     const uint32_t k = frame_index / 60;
     f.transform = pose_about(geo, axis_angle(up, 0.5 * kPi * static_cast<double>(k)),

@@ -229,21 +229,6 @@ void Simulator::length_and_collision(const Substep& st) {
       }
     }
 
-    for (uint32_t it = 0; it < gp.length_iterations; ++it) {
-      for (uint32_t v = 0; v + 1 < n; ++v) {
-        const double wa = movable(b + v) ? 1.0 : 0.0;
-        const double wb = movable(b + v + 1) ? 1.0 : 0.0;
-        const double wsum = wa + wb;
-        if (wsum == 0.0) continue;
-        const Vec3 d = pos_[b + v + 1] - pos_[b + v];
-        const double len = length(d);
-        if (!(len > 0.0)) continue;
-        const Vec3 corr = ((len - rest_.rest_length[b + v]) / (len * wsum)) * d;
-        if (movable(b + v)) pos_[b + v] += wa * corr;
-        if (movable(b + v + 1)) pos_[b + v + 1] -= wb * corr;
-      }
-    }
-
     for (uint32_t v = 0; v < n && st.capsule_count > 0; ++v) {
       const size_t i = b + v;
       if (!movable(i)) continue;
@@ -275,6 +260,22 @@ void Simulator::length_and_collision(const Substep& st) {
       if (hit) {
         pos_[i] = x;
         prev_[i] = y;
+      }
+    }
+
+    for (uint32_t it = 0; it < gp.length_iterations; ++it) {
+      const bool last_sweep = it + 1 == gp.length_iterations;
+      for (uint32_t v = 0; v + 1 < n; ++v) {
+        const double wb = movable(b + v + 1) ? 1.0 : 0.0;
+        const double wa = (movable(b + v) && !(last_sweep && wb > 0.0)) ? 1.0 : 0.0;
+        const double wsum = wa + wb;
+        if (wsum == 0.0) continue;
+        const Vec3 d = pos_[b + v + 1] - pos_[b + v];
+        const double len = length(d);
+        if (!(len > 0.0)) continue;
+        const Vec3 corr = ((len - rest_.rest_length[b + v]) / (len * wsum)) * d;
+        if (wa > 0.0) pos_[b + v] += wa * corr;
+        if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
       }
     }
 

@@ -1,0 +1,46 @@
+// Shared fixtures of the reference tests.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <tressvk/asset.hpp>
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/scenes.hpp>
+#include <tressvk/reference/simulator.hpp>
+
+namespace tvk_test {
+
+using namespace tressvk::reference;
+
+inline tressvk::asset::HairAsset groom(const std::string& name, uint32_t guides = 64, uint32_t follows = 0,
+                                       uint32_t n = 0) {
+  tressvk::baker::BuiltinGroomOptions o;
+  o.guide_count = guides;
+  o.follow_per_guide = follows;
+  o.vertices_per_strand = n;
+  return tressvk::baker::make_builtin_groom(name, o);
+}
+
+inline TvkSimParams default_params() {
+  TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
+  return p;
+}
+
+inline TvkSimSettings default_settings() {
+  TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  return s;
+}
+
+inline Simulator make_sim(const tressvk::asset::HairAsset& a, const TvkSimParams& p = default_params(),
+                          const TvkSimSettings& s = default_settings()) {
+  return Simulator(a, std::span<const TvkSimParams>(&p, 1), s);
+}
+
+// Largest distance between two position lists divided by the median strand length.
+inline double max_rel(std::span<const Vec3> a, std::span<const Vec3> b, double median) {
+  return position_error(a, b, median).max_rel;
+}
+
+}  // namespace tvk_test
