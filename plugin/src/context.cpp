@@ -1,4 +1,5 @@
 #include "context.hpp"
+#include "objects.hpp"
 
 #include <cstdio>
 #include <new>
@@ -151,6 +152,33 @@ TvkResult tressvk_create_context(const TvkContextCreateInfo* info, TvkContext* o
     delete ctx;
     return r;
   }
+  if (info->enable_timestamps) {
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(info->physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(info->physical_device, &family_count, families.data());
+    if (info->queue_family_index < family_count && families[info->queue_family_index].timestampValidBits > 0 &&
+        ctx->device_properties.limits.timestampPeriod > 0.0f) {
+      // Two queries per pass slot: up to 4 passes per substep plus the follow pass.
+      ctx->queries_per_frame = 2 * (4 * TVK_MAX_STEPS_PER_FRAME + 1);
+      VkQueryPoolCreateInfo qci{};
+      qci.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+      qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      qci.queryCount = ctx->queries_per_frame * ctx->frames_in_flight;
+      if (const TvkResult r = ctx->check(
+              ctx->vk.vkCreateQueryPool(info->device, &qci, info->allocator, &ctx->timestamp_pool), "vkCreateQueryPool");
+          r != TVK_SUCCESS) {
+        vmaDestroyAllocator(ctx->allocator);
+        delete ctx;
+        return r;
+      }
+      ctx->timestamp_period_ns = ctx->device_properties.limits.timestampPeriod;
+      ctx->timed_slices.resize(ctx->frames_in_flight);
+    } else {
+      ctx->message(TVK_MESSAGE_WARNING, "timestamps requested but queue family %u does not support them",
+                   info->queue_family_index);
+    }
+  }
   ctx->message(TVK_MESSAGE_INFO, "TressVK %d.%d.%d context on '%s'", TVK_VERSION_MAJOR, TVK_VERSION_MINOR,
                TVK_VERSION_PATCH, ctx->device_properties.deviceName);
   *out_context = ctx;
@@ -160,6 +188,8 @@ TvkResult tressvk_create_context(const TvkContextCreateInfo* info, TvkContext* o
 void tressvk_destroy_context(TvkContext context) {
   TvkContext_T* ctx = context;
   if (!ctx) return;
+  tressvk::destroy_sim_objects(*ctx);
+  ctx->collect_garbage(true);
   if (ctx->allocator) vmaDestroyAllocator(ctx->allocator);
   delete ctx;
 }

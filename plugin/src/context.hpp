@@ -8,6 +8,7 @@
 
 #include <cstdarg>
 #include <string>
+#include <vector>
 
 namespace tressvk {
 
@@ -19,6 +20,47 @@ struct Context {
   VmaAllocator allocator = VK_NULL_HANDLE;    // private to TressVK, on the host's device
   uint32_t frames_in_flight = 2;
   std::string last_error;
+
+  // Frame pacing: tressvk_new_frame() advances `frame`; the host promises that the GPU has finished the frame
+  // recorded `frames_in_flight` frames earlier, so resources released then can be destroyed now.
+  uint64_t frame = 0;
+  struct DeferredBuffer {
+    uint64_t release_frame;
+    VkBuffer buffer;
+    VmaAllocation allocation;
+  };
+  std::vector<DeferredBuffer> deferred_buffers;
+  struct DeferredPool {
+    uint64_t release_frame;
+    VkDescriptorPool pool;
+  };
+  std::vector<DeferredPool> deferred_pools;
+  void collect_garbage(bool everything);
+
+  // Simulation pipelines: one descriptor set layout and pipeline layout for every pass; pipelines created on
+  // first use per (pass, N, K, features, capsule count).
+  VkDescriptorSetLayout sim_set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout sim_pipeline_layout = VK_NULL_HANDLE;
+  struct PipelineEntry {
+    uint64_t key;
+    VkPipeline pipeline;
+  };
+  std::vector<PipelineEntry> pipelines;
+  uint32_t workgroup_size = 64;
+
+  // Names of the passes recorded by the last simulate (static strings from the pass table, plus variants).
+  std::vector<std::string> recorded_passes;
+
+  // Timestamps: a pool of frames_in_flight slices; each slice remembers which pass each query pair timed.
+  VkQueryPool timestamp_pool = VK_NULL_HANDLE;
+  double timestamp_period_ns = 1.0;
+  uint32_t queries_per_frame = 0;
+  struct TimedSlice {
+    uint64_t frame = 0;
+    std::vector<std::string> pass_names;  // one per query pair
+    std::vector<uint32_t> dispatches;     // dispatches in that pair
+  };
+  std::vector<TimedSlice> timed_slices;
 
   // Records an error, forwards it to the host's callback, and returns `result` for `return ctx.fail(...)`.
   TvkResult fail(TvkResult result, const char* format, ...) __attribute__((format(printf, 3, 4)));

@@ -92,6 +92,7 @@ typedef struct TvkContextCreateInfo {
   const VkAllocationCallbacks* allocator;     /* optional, used for Vulkan objects */
   PFN_tvkMessageCallback message_callback;    /* optional */
   void* message_user_data;
+  VkBool32 enable_timestamps;                 /* record GPU timestamps around every pass (tressvk_get_pass_timings) */
 } TvkContextCreateInfo;
 
 typedef struct TvkMemoryUsage {
@@ -116,6 +117,132 @@ TVK_API void tressvk_destroy_context(TvkContext context);
 TVK_API TvkResult tressvk_get_memory_usage(TvkContext context, TvkMemoryUsage* out_usage);
 /* The message of the last failed call on this context ("" when none). Valid until the next call. */
 TVK_API const char* tressvk_last_error(TvkContext context);
+
+
+/* ---- Assets ------------------------------------------------------------------------------------------------
+ * A baked .tvkhair asset (see tressvk-bake). Its static GPU buffers are shared by every instance made from it.
+ * Loading verifies every checksum and records the upload (copies from a staging buffer, then a barrier that makes
+ * the data visible to compute and vertex shaders) into `upload_command_buffer`, which the host submits before, or
+ * as part of, the first frame that simulates an instance of the asset. The staging memory is freed
+ * frames_in_flight frames later (see tressvk_new_frame). */
+typedef struct TvkAsset_T* TvkAsset;
+
+typedef struct TvkAssetLoadInfo {
+  size_t struct_size;                /* sizeof(TvkAssetLoadInfo) */
+  const void* next;
+  const char* path;                  /* a .tvkhair file, or NULL to load from `data` */
+  const void* data;                  /* the bytes of a .tvkhair file when path is NULL; copied, need not outlive the call */
+  size_t size;
+  VkCommandBuffer upload_command_buffer; /* recording, outside any render pass */
+} TvkAssetLoadInfo;
+
+typedef struct TvkAssetInfo {
+  uint32_t guide_count;
+  uint32_t follow_per_guide;
+  uint32_t total_strands;            /* guides * (1 + follows), the strands rendered */
+  uint32_t vertices_per_strand;
+  uint32_t group_count;
+  uint32_t bone_count;
+  double origin[3];                  /* m, asset space origin that positions are relative to */
+  float median_strand_length;        /* m, over guides */
+} TvkAssetInfo;
+
+TVK_API TvkResult tressvk_load_asset(TvkContext context, const TvkAssetLoadInfo* info, TvkAsset* out_asset);
+/* The asset's memory is released once no instance uses it any more and the GPU is done with it. */
+TVK_API void tressvk_destroy_asset(TvkAsset asset);
+TVK_API TvkResult tressvk_get_asset_info(TvkAsset asset, TvkAssetInfo* out_info);
+/* Name of group `group` ("" when out of range). Valid as long as the asset. */
+TVK_API const char* tressvk_get_asset_group_name(TvkAsset asset, uint32_t group);
+
+/* ---- Instances ---------------------------------------------------------------------------------------------
+ * One simulated head of hair: an asset placed in the world, with its own state and parameters. */
+typedef struct TvkInstance_T* TvkInstance;
+
+typedef struct TvkInstanceCreateInfo {
+  size_t struct_size;                /* sizeof(TvkInstanceCreateInfo) */
+  const void* next;
+  TvkAsset asset;
+  const TvkSimSettings* settings;    /* NULL = TVK_SIM_SETTINGS_DEFAULT_INIT */
+  const TvkSimParams* params;        /* NULL = TVK_SIM_PARAMS_DEFAULT_INIT for every group */
+} TvkInstanceCreateInfo;
+
+TVK_API TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInfo* info,
+                                          TvkInstance* out_instance);
+/* Freed frames_in_flight frames later, so the host may destroy an instance while a frame using it is in flight. */
+TVK_API void tressvk_destroy_instance(TvkInstance instance);
+/* Parameters of one strand group, or of every group with group = TVK_ALL_GROUPS. Take effect next frame. */
+#define TVK_ALL_GROUPS 0xFFFFFFFFu
+TVK_API TvkResult tressvk_set_sim_params(TvkInstance instance, uint32_t group, const TvkSimParams* params);
+TVK_API TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* settings);
+/* This frame's motion, wind and colliders. Call before tressvk_cmd_simulate; the frame is copied. */
+TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame);
+
+typedef struct TvkInstanceBuffers {
+  VkBuffer positions;                /* vec4 per vertex of every rendered strand (guides, then follow layers): xyz in
+                                        simulation space (world axes, origin at `origin`), w = inverse mass */
+  VkBuffer tangents;                 /* vec4 per vertex, same order; xyz unit */
+  VkBuffer previous_positions;       /* vec4 per guide vertex, the previous step */
+  VkBuffer previous_previous_positions; /* vec4 per guide vertex, two steps back (for checking against the
+                                        reference, tressvk::reference::Simulator::set_state) */
+  VkDeviceSize positions_size;
+  VkDeviceSize tangents_size;
+  VkDeviceSize previous_positions_size;  /* also the size of previous_previous_positions */
+  double origin[3];                  /* m, world position of the simulation-space origin after the last frame */
+} TvkInstanceBuffers;
+
+TVK_API TvkResult tressvk_get_instance_buffers(TvkInstance instance, TvkInstanceBuffers* out_buffers);
+
+typedef struct TvkInstanceStats {
+  uint64_t steps;                    /* simulation steps run so far */
+  uint64_t frames;                   /* frames simulated so far */
+  uint32_t nonfinite_strand_resets;  /* strands reset after going non-finite; read back from the GPU, current as of
+                                        the last frame the host waited for */
+  uint32_t steps_last_frame;
+} TvkInstanceStats;
+
+TVK_API TvkResult tressvk_get_instance_stats(TvkInstance instance, TvkInstanceStats* out_stats);
+
+/* ---- Frames ------------------------------------------------------------------------------------------------
+ * Call once per host frame before recording TressVK work. By calling it the host promises that the GPU has
+ * finished the work it recorded frames_in_flight frames ago: per-frame parameter slices are reused and released
+ * resources are freed on that promise. */
+TVK_API TvkResult tressvk_new_frame(TvkContext context);
+
+typedef struct TvkSimulateInfo {
+  size_t struct_size;                /* sizeof(TvkSimulateInfo) */
+  const void* next;
+  uint32_t instance_count;
+  const TvkInstance* instances;      /* each has had tressvk_set_frame called this frame */
+} TvkSimulateInfo;
+
+/* Records the whole simulation of the listed instances for this frame into `command_buffer`, which must be
+ * recording and outside any render pass (the simulation owns its barriers, which cannot be recorded inside one).
+ *
+ * Synchronization contract:
+ * - on entry, TressVK orders its work after earlier vertex-shader, fragment-shader, compute and transfer accesses
+ *   to the instances' buffers (the previous frame's draws and any host copies);
+ * - between passes, buffer barriers scoped to exactly the buffers a pass reads and writes;
+ * - on exit, positions and tangents are visible to VERTEX_SHADER and COMPUTE_SHADER storage reads. A host that
+ *   copies them (transfer) records its own COMPUTE_SHADER write -> COPY read barrier.
+ * State disturbed in the command buffer: the bound compute pipeline, compute descriptor set 0 and compute push
+ * constants. Graphics state is untouched. */
+TVK_API TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer command_buffer, const TvkSimulateInfo* info);
+
+/* The passes recorded by the last tressvk_cmd_simulate, in order, deduplicated across substeps and instances
+ * (e.g. "integrate", "vsp", "local_shape", "length+collision", "follow"). Returns how many there are; writes at
+ * most `capacity` names (static strings). */
+TVK_API uint32_t tressvk_get_recorded_passes(TvkContext context, const char** names, uint32_t capacity);
+
+typedef struct TvkPassTiming {
+  const char* name;                  /* pass name, as in tressvk_get_recorded_passes */
+  uint32_t dispatches;               /* dispatches of that pass in the frame (substeps x instances) */
+  double milliseconds;               /* GPU time summed over those dispatches */
+} TvkPassTiming;
+
+/* Per-pass GPU times of the newest frame that tressvk_new_frame's promise says is complete (needs
+ * enable_timestamps at context creation and a queue family with timestamp support). Returns the number of passes;
+ * writes at most `capacity`. 0 when no results are available. */
+TVK_API uint32_t tressvk_get_pass_timings(TvkContext context, TvkPassTiming* timings, uint32_t capacity);
 
 #ifdef __cplusplus
 }

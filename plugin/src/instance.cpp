@@ -1,0 +1,231 @@
+// Instances: a placed asset with its own dynamic state, parameters, per-frame parameter ring and descriptor set.
+#include "objects.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <new>
+
+using tressvk::Context;
+using tressvk::GpuBuffer;
+using tressvk::Memory;
+
+namespace {
+
+VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+void destroy_instance_now(TvkInstance_T* inst, bool deferred) {
+  Context& ctx = *inst->ctx;
+  for (GpuBuffer* b : {&inst->positions, &inst->prev, &inst->prevprev, &inst->tangents, &inst->counters, &inst->ring})
+    deferred ? destroy_buffer_deferred(ctx, *b) : destroy_buffer(ctx, *b);
+  // The descriptor pool holds no GPU memory the device could still read after the buffers are gone; a pool
+  // destroyed while a command buffer using its set is pending is invalid, so it follows the same deferral by
+  // being destroyed with the context's garbage when deferred.
+  if (inst->pool) {
+    if (deferred)
+      ctx.deferred_pools.push_back({ctx.frame, inst->pool});
+    else
+      ctx.vk.vkDestroyDescriptorPool(ctx.info.device, inst->pool, ctx.info.allocator);
+  }
+  if (inst->asset) inst->asset->release();
+  delete inst;
+}
+
+TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
+  const auto& rest = inst.asset->rest;
+  const VkDeviceSize guide_vertices = VkDeviceSize{rest.guide_count} * rest.vertices_per_strand;
+  const VkDeviceSize all_vertices = guide_vertices * (1 + rest.follow_per_guide);
+  const VkBufferUsageFlags state_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  TvkResult r = TVK_SUCCESS;
+  if ((r = create_buffer(ctx, all_vertices * 16, state_usage, Memory::device, "positions", inst.positions)) ||
+      (r = create_buffer(ctx, guide_vertices * 16, state_usage, Memory::device, "previous positions", inst.prev)) ||
+      (r = create_buffer(ctx, guide_vertices * 16, state_usage, Memory::device, "positions two steps back",
+                         inst.prevprev)) ||
+      (r = create_buffer(ctx, all_vertices * 16, state_usage, Memory::device, "tangents", inst.tangents)) ||
+      (r = create_buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::host_readback, "counters",
+                         inst.counters)))
+    return r;
+  std::memset(inst.counters.mapped, 0, 16);
+
+  // The ring: per frame in flight, [group params][step params x max steps][skin x max steps x bones].
+  const VkDeviceSize align = std::max<VkDeviceSize>(ctx.device_properties.limits.minStorageBufferOffsetAlignment, 16);
+  const uint32_t groups = static_cast<uint32_t>(inst.params.size());
+  const uint32_t bones = std::max<uint32_t>(1, rest.bone_count);
+  inst.groups_offset = 0;
+  inst.steps_offset = align_up(groups * sizeof(tressvk::sim::GroupParams), align);
+  inst.skin_offset = inst.steps_offset + align_up(TVK_MAX_STEPS_PER_FRAME * sizeof(tressvk::sim::StepParams), align);
+  inst.slice_size = align_up(inst.skin_offset + VkDeviceSize{TVK_MAX_STEPS_PER_FRAME} * bones *
+                                                    tressvk::sim::kSkinVec4PerBone * 16,
+                             align);
+  if ((r = create_buffer(ctx, inst.slice_size * ctx.frames_in_flight, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         Memory::host_upload, "per-frame simulation parameters", inst.ring)))
+    return r;
+
+  // One descriptor set, written once: the per-frame bindings move with dynamic offsets.
+  const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, tressvk::sim::kBindingCount - 3},
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 3}};
+  VkDescriptorPoolCreateInfo pci{};
+  pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pci.maxSets = 1;
+  pci.poolSizeCount = 2;
+  pci.pPoolSizes = sizes;
+  if ((r = ctx.check(ctx.vk.vkCreateDescriptorPool(ctx.info.device, &pci, ctx.info.allocator, &inst.pool),
+                     "vkCreateDescriptorPool")))
+    return r;
+  VkDescriptorSetAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  ai.descriptorPool = inst.pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &ctx.sim_set_layout;
+  if ((r = ctx.check(ctx.vk.vkAllocateDescriptorSets(ctx.info.device, &ai, &inst.set), "vkAllocateDescriptorSets")))
+    return r;
+
+  std::array<VkDescriptorBufferInfo, tressvk::sim::kBindingCount> infos{};
+  const GpuBuffer* dynamic_state[4] = {&inst.positions, &inst.prev, &inst.prevprev, &inst.tangents};
+  for (uint32_t b = 0; b < 4; ++b) infos[b] = {dynamic_state[b]->buffer, 0, VK_WHOLE_SIZE};
+  for (uint32_t b = 0; b < 8; ++b) infos[4 + b] = {inst.asset->statics[b].buffer, 0, VK_WHOLE_SIZE};
+  infos[tressvk::sim::kBindingSkin] = {inst.ring.buffer, inst.skin_offset, inst.slice_size - inst.skin_offset};
+  infos[tressvk::sim::kBindingGroups] = {inst.ring.buffer, inst.groups_offset, inst.steps_offset};
+  infos[tressvk::sim::kBindingSteps] = {inst.ring.buffer, inst.steps_offset, inst.skin_offset - inst.steps_offset};
+  infos[tressvk::sim::kBindingCounters] = {inst.counters.buffer, 0, VK_WHOLE_SIZE};
+  std::array<VkWriteDescriptorSet, tressvk::sim::kBindingCount> writes{};
+  for (uint32_t b = 0; b < tressvk::sim::kBindingCount; ++b) {
+    writes[b] = {};
+    writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[b].dstSet = inst.set;
+    writes[b].dstBinding = b;
+    writes[b].descriptorCount = 1;
+    writes[b].descriptorType = tressvk::is_dynamic_binding(b) ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC
+                                                              : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[b].pBufferInfo = &infos[b];
+  }
+  ctx.vk.vkUpdateDescriptorSets(ctx.info.device, tressvk::sim::kBindingCount, writes.data(), 0, nullptr);
+  return TVK_SUCCESS;
+}
+
+TvkResult check_params(Context& ctx, const TvkSimParams& p, const char* what) {
+  // The reference's conversion validates every field and names the one at fault.
+  try {
+    (void)tressvk::reference::to_group_step(p, 1.0 / 120.0, 0.0);
+  } catch (const std::exception& e) {
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: %s", what, e.what());
+  }
+  return TVK_SUCCESS;
+}
+
+}  // namespace
+
+extern "C" {
+
+TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInfo* info, TvkInstance* out) {
+  if (!out) return TVK_ERROR_INVALID_ARGUMENT;
+  *out = nullptr;
+  if (!context) return TVK_ERROR_INVALID_ARGUMENT;
+  Context& ctx = *context;
+  if (!info || info->struct_size != sizeof(TvkInstanceCreateInfo) || !info->asset)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_create_instance: info, struct_size or asset is wrong");
+  if (TvkResult r = tressvk::ensure_sim_layouts(ctx); r != TVK_SUCCESS) return r;
+  try {
+    auto* inst = new TvkInstance_T();
+    inst->ctx = &ctx;
+    inst->asset = info->asset;
+    ++info->asset->users;
+    inst->settings = info->settings ? *info->settings : TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT;
+    const TvkSimParams params = info->params ? *info->params : TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT;
+    if (TvkResult r = check_params(ctx, params, "tressvk_create_instance: params"); r != TVK_SUCCESS) {
+      destroy_instance_now(inst, false);
+      return r;
+    }
+    inst->params.assign(std::max<size_t>(1, info->asset->cpu.groups.size()), params);
+    inst->planner = std::make_unique<tressvk::reference::FramePlanner>(inst->settings, info->asset->cpu.origin,
+                                                                        info->asset->rest.bone_count);
+    if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) {
+      destroy_instance_now(inst, false);
+      return r;
+    }
+    *out = inst;
+    return TVK_SUCCESS;
+  } catch (const std::bad_alloc&) {
+    return ctx.fail(TVK_ERROR_OUT_OF_MEMORY, "tressvk_create_instance: out of host memory");
+  } catch (const std::exception& e) {
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_create_instance: %s", e.what());
+  }
+}
+
+void tressvk_destroy_instance(TvkInstance instance) {
+  if (instance) destroy_instance_now(instance, true);
+}
+
+TvkResult tressvk_set_sim_params(TvkInstance instance, uint32_t group, const TvkSimParams* params) {
+  if (!instance || !params) return TVK_ERROR_INVALID_ARGUMENT;
+  Context& ctx = *instance->ctx;
+  if (group != TVK_ALL_GROUPS && group >= instance->params.size())
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_params: group %u out of range (asset has %zu)",
+                    group, instance->params.size());
+  if (TvkResult r = check_params(ctx, *params, "tressvk_set_sim_params"); r != TVK_SUCCESS) return r;
+  if (group == TVK_ALL_GROUPS)
+    std::fill(instance->params.begin(), instance->params.end(), *params);
+  else
+    instance->params[group] = *params;
+  return TVK_SUCCESS;
+}
+
+TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* settings) {
+  if (!instance || !settings) return TVK_ERROR_INVALID_ARGUMENT;
+  try {
+    instance->planner->set_settings(*settings);
+    instance->settings = *settings;
+  } catch (const std::exception& e) {
+    return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_settings: %s", e.what());
+  }
+  return TVK_SUCCESS;
+}
+
+TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
+  if (!instance || !frame) return TVK_ERROR_INVALID_ARGUMENT;
+  Context& ctx = *instance->ctx;
+  const uint32_t bones = instance->asset->rest.bone_count;
+  if (frame->bones && frame->bone_count != bones)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_frame: bone_count %u but the asset has %u bones",
+                    frame->bone_count, bones);
+  if (frame->capsule_count > TVK_MAX_CAPSULES)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_frame: capsule_count %u exceeds %u",
+                    frame->capsule_count, TVK_MAX_CAPSULES);
+  instance->frame = *frame;
+  if (frame->bones) {
+    instance->bones.assign(frame->bones, frame->bones + frame->bone_count);
+    instance->frame.bones = instance->bones.data();
+  } else {
+    instance->bones.clear();
+  }
+  instance->frame_set = true;
+  return TVK_SUCCESS;
+}
+
+TvkResult tressvk_get_instance_buffers(TvkInstance instance, TvkInstanceBuffers* out) {
+  if (!instance || !out) return TVK_ERROR_INVALID_ARGUMENT;
+  *out = TvkInstanceBuffers{};
+  out->positions = instance->positions.buffer;
+  out->tangents = instance->tangents.buffer;
+  out->previous_positions = instance->prev.buffer;
+  out->previous_previous_positions = instance->prevprev.buffer;
+  out->positions_size = instance->positions.size;
+  out->tangents_size = instance->tangents.size;
+  out->previous_positions_size = instance->prev.size;
+  for (size_t i = 0; i < 3; ++i) out->origin[i] = instance->sim_origin[i];
+  return TVK_SUCCESS;
+}
+
+TvkResult tressvk_get_instance_stats(TvkInstance instance, TvkInstanceStats* out) {
+  if (!instance || !out) return TVK_ERROR_INVALID_ARGUMENT;
+  *out = TvkInstanceStats{};
+  out->steps = instance->steps;
+  out->frames = instance->frames;
+  out->steps_last_frame = instance->steps_last_frame;
+  vmaInvalidateAllocation(instance->ctx->allocator, instance->counters.allocation, 0, VK_WHOLE_SIZE);
+  std::memcpy(&out->nonfinite_strand_resets, instance->counters.mapped, sizeof(uint32_t));
+  return TVK_SUCCESS;
+}
+
+}  // extern "C"

@@ -1,0 +1,68 @@
+// Internal state of the plugin's handles: assets (static GPU data shared by instances) and instances (dynamic
+// state, parameters and the per-frame parameter ring).
+#pragma once
+
+#include "context.hpp"
+#include "gpu.hpp"
+#include "hazards.hpp"
+#include "sim/gpu_layout.hpp"
+#include "sim/passes.hpp"
+
+#include <tressvk/asset.hpp>
+#include <tressvk/reference/model.hpp>
+#include <tressvk/reference/planner.hpp>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+struct TvkAsset_T {
+  tressvk::Context* ctx = nullptr;
+  tressvk::asset::HairAsset cpu;        // kept for group names, bone count and the reference
+  tressvk::reference::ModelRest rest;   // the model's rest data (double), from which the GPU data is made
+  float median_strand_length = 0.0f;
+  // Static buffers, bindings 4..11 of shaders/sim/layout.glsl.
+  std::array<tressvk::GpuBuffer, 8> statics{};
+  uint32_t users = 1;                   // the host's handle plus one per live instance
+  void release();                       // drops one user; frees (deferred) at zero
+};
+
+struct TvkInstance_T {
+  tressvk::Context* ctx = nullptr;
+  TvkAsset_T* asset = nullptr;
+  TvkSimSettings settings{};
+  std::vector<TvkSimParams> params;     // one per strand group
+  TvkSimFrame frame{};                  // this frame's input (tressvk_set_frame)
+  std::vector<TvkBoneMatrix> bones;     // copy of frame.bones
+  bool frame_set = false;
+  std::unique_ptr<tressvk::reference::FramePlanner> planner;
+
+  // Dynamic state, bindings 0..3, and the counters (binding 15, host-visible).
+  tressvk::GpuBuffer positions, prev, prevprev, tangents, counters;
+  // Per-frame parameters, bindings 12 (skin), 13 (groups), 14 (steps): one slice per frame in flight, bound with
+  // dynamic offsets.
+  tressvk::GpuBuffer ring;
+  VkDeviceSize slice_size = 0, groups_offset = 0, steps_offset = 0, skin_offset = 0;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+
+  std::array<double, 3> sim_origin{};
+  uint64_t steps = 0, frames = 0;
+  uint32_t steps_last_frame = 0;
+  tressvk::HazardTracker hazards;
+};
+
+namespace tressvk {
+
+// Bindings 12 (skin), 13 (groups) and 14 (steps) move through the per-frame ring with dynamic offsets.
+inline bool is_dynamic_binding(uint32_t b) {
+  return b == sim::kBindingSkin || b == sim::kBindingGroups || b == sim::kBindingSteps;
+}
+
+// Creates (once) the descriptor set layout and pipeline layout shared by every simulation pipeline.
+TvkResult ensure_sim_layouts(Context& ctx);
+void destroy_sim_objects(Context& ctx);
+
+}  // namespace tressvk

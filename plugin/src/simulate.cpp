@@ -1,0 +1,381 @@
+// Recording the simulation: pipelines per pass variant, the per-frame parameter ring, and the barriers between
+// passes, derived from the pass table's read/write sets (see hazards.hpp).
+#include "objects.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+
+using tressvk::Context;
+using tressvk::sim::PassId;
+using tressvk::sim::PassUse;
+
+namespace tressvk {
+
+TvkResult ensure_sim_layouts(Context& ctx) {
+  if (ctx.sim_pipeline_layout) return TVK_SUCCESS;
+  std::array<VkDescriptorSetLayoutBinding, sim::kBindingCount> bindings{};
+  for (uint32_t b = 0; b < sim::kBindingCount; ++b) {
+    bindings[b].binding = b;
+    bindings[b].descriptorType =
+        is_dynamic_binding(b) ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[b].descriptorCount = 1;
+    bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo sci{};
+  sci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  sci.bindingCount = sim::kBindingCount;
+  sci.pBindings = bindings.data();
+  if (TvkResult r = ctx.check(
+          ctx.vk.vkCreateDescriptorSetLayout(ctx.info.device, &sci, ctx.info.allocator, &ctx.sim_set_layout),
+          "vkCreateDescriptorSetLayout");
+      r != TVK_SUCCESS)
+    return r;
+  const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(sim::PushConstants)};
+  VkPipelineLayoutCreateInfo pci{};
+  pci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  pci.setLayoutCount = 1;
+  pci.pSetLayouts = &ctx.sim_set_layout;
+  pci.pushConstantRangeCount = 1;
+  pci.pPushConstantRanges = &range;
+  return ctx.check(
+      ctx.vk.vkCreatePipelineLayout(ctx.info.device, &pci, ctx.info.allocator, &ctx.sim_pipeline_layout),
+      "vkCreatePipelineLayout");
+}
+
+void destroy_sim_objects(Context& ctx) {
+  for (const Context::PipelineEntry& e : ctx.pipelines)
+    ctx.vk.vkDestroyPipeline(ctx.info.device, e.pipeline, ctx.info.allocator);
+  ctx.pipelines.clear();
+  if (ctx.sim_pipeline_layout)
+    ctx.vk.vkDestroyPipelineLayout(ctx.info.device, ctx.sim_pipeline_layout, ctx.info.allocator);
+  if (ctx.sim_set_layout)
+    ctx.vk.vkDestroyDescriptorSetLayout(ctx.info.device, ctx.sim_set_layout, ctx.info.allocator);
+  if (ctx.timestamp_pool) ctx.vk.vkDestroyQueryPool(ctx.info.device, ctx.timestamp_pool, ctx.info.allocator);
+  ctx.sim_pipeline_layout = VK_NULL_HANDLE;
+  ctx.sim_set_layout = VK_NULL_HANDLE;
+  ctx.timestamp_pool = VK_NULL_HANDLE;
+}
+
+namespace {
+
+TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k, VkPipeline& out) {
+  const uint64_t key = uint64_t(use.info->id) | uint64_t(n) << 8 | uint64_t(k) << 16 | uint64_t(use.features) << 32 |
+                       uint64_t(use.capsule_count) << 48;
+  for (const Context::PipelineEntry& e : ctx.pipelines)
+    if (e.key == key) {
+      out = e.pipeline;
+      return TVK_SUCCESS;
+    }
+  VkShaderModuleCreateInfo mci{};
+  mci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  mci.codeSize = use.info->spirv_bytes;
+  mci.pCode = use.info->spirv;
+  VkShaderModule module = VK_NULL_HANDLE;
+  if (TvkResult r = ctx.check(ctx.vk.vkCreateShaderModule(ctx.info.device, &mci, ctx.info.allocator, &module),
+                              "vkCreateShaderModule");
+      r != TVK_SUCCESS)
+    return r;
+  const std::array<uint32_t, 5> values = {ctx.workgroup_size, n, k, use.features, use.capsule_count};
+  std::array<VkSpecializationMapEntry, 5> entries{};
+  for (uint32_t i = 0; i < 5; ++i) entries[i] = {i, i * 4, 4};
+  const VkSpecializationInfo spec{5, entries.data(), sizeof(values), values.data()};
+  VkComputePipelineCreateInfo cpi{};
+  cpi.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  cpi.stage = {};
+  cpi.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  cpi.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  cpi.stage.module = module;
+  cpi.stage.pName = "main";
+  cpi.stage.pSpecializationInfo = &spec;
+  cpi.layout = ctx.sim_pipeline_layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const VkResult vr = ctx.vk.vkCreateComputePipelines(ctx.info.device, ctx.info.pipeline_cache, 1, &cpi,
+                                                      ctx.info.allocator, &pipeline);
+  ctx.vk.vkDestroyShaderModule(ctx.info.device, module, ctx.info.allocator);
+  if (TvkResult r = ctx.check(vr, "vkCreateComputePipelines"); r != TVK_SUCCESS) return r;
+  ctx.pipelines.push_back({key, pipeline});
+  out = pipeline;
+  return TVK_SUCCESS;
+}
+
+// The instance buffer behind a writable binding (the only ones that can carry a hazard).
+VkBuffer writable_buffer(const TvkInstance_T& inst, uint32_t binding) {
+  switch (binding) {
+    case sim::kBindingPositions: return inst.positions.buffer;
+    case sim::kBindingPrevPositions: return inst.prev.buffer;
+    case sim::kBindingPrevPrevPositions: return inst.prevprev.buffer;
+    case sim::kBindingTangents: return inst.tangents.buffer;
+    case sim::kBindingCounters: return inst.counters.buffer;
+    default: return VK_NULL_HANDLE;
+  }
+}
+
+VkBufferMemoryBarrier2 buffer_barrier(VkBuffer buffer, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                                      VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+  VkBufferMemoryBarrier2 b{};
+  b.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2;
+  b.srcStageMask = src_stage;
+  b.srcAccessMask = src_access;
+  b.dstStageMask = dst_stage;
+  b.dstAccessMask = dst_access;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.buffer = buffer;
+  b.size = VK_WHOLE_SIZE;
+  return b;
+}
+
+void record_barriers(Context& ctx, VkCommandBuffer cmd, const std::vector<VkBufferMemoryBarrier2>& barriers) {
+  if (barriers.empty()) return;
+  VkDependencyInfo dep{};
+  dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+  dep.bufferMemoryBarrierCount = static_cast<uint32_t>(barriers.size());
+  dep.pBufferMemoryBarriers = barriers.data();
+  ctx.vk.vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+struct InstanceWork {
+  TvkInstance_T* inst = nullptr;
+  reference::FramePlan plan;
+  uint32_t steps = 0;
+  uint32_t skin_stride = 0;  // vec4 per substep
+  std::vector<PassUse> passes;
+  std::array<uint32_t, 3> dynamic_offsets{};
+};
+
+// Plans the instance's frame and writes its parameters into this frame's ring slice.
+TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
+  work.inst = &inst;
+  work.plan = inst.planner->plan(inst.frame);
+  const reference::GpuFrame gpu = reference::to_gpu(work.plan);
+  work.steps = static_cast<uint32_t>(work.plan.steps.size());
+  work.skin_stride = gpu.skin_stride;
+  if (work.steps > TVK_MAX_STEPS_PER_FRAME)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "a frame planned %u steps (limit %u)", work.steps,
+                    TVK_MAX_STEPS_PER_FRAME);
+  const uint32_t slice = static_cast<uint32_t>(ctx.frame % ctx.frames_in_flight);
+  const VkDeviceSize base = VkDeviceSize{slice} * inst.slice_size;
+  auto* ring = static_cast<std::byte*>(inst.ring.mapped);
+  const double h = inst.planner->step_length();
+  for (size_t g = 0; g < inst.params.size(); ++g) {
+    const sim::GroupParams gp =
+        reference::to_gpu(reference::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation));
+    std::memcpy(ring + base + inst.groups_offset + g * sizeof(gp), &gp, sizeof(gp));
+  }
+  if (!gpu.steps.empty())
+    std::memcpy(ring + base + inst.steps_offset, gpu.steps.data(), gpu.steps.size() * sizeof(sim::StepParams));
+  if (!gpu.skin.empty()) {
+    if (inst.skin_offset + gpu.skin.size() * sizeof(sim::Vec4) > inst.slice_size)
+      return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "skinning data exceeds the parameter ring");
+    std::memcpy(ring + base + inst.skin_offset, gpu.skin.data(), gpu.skin.size() * sizeof(sim::Vec4));
+  }
+  vmaFlushAllocation(ctx.allocator, inst.ring.allocation, base, inst.slice_size);
+  work.dynamic_offsets = {static_cast<uint32_t>(base), static_cast<uint32_t>(base), static_cast<uint32_t>(base)};
+  const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide);
+  work.passes = sim::passes_for(terms);
+  return TVK_SUCCESS;
+}
+
+}  // namespace
+}  // namespace tressvk
+
+extern "C" {
+
+TvkResult tressvk_new_frame(TvkContext context) {
+  if (!context) return TVK_ERROR_INVALID_ARGUMENT;
+  ++context->frame;
+  context->collect_garbage(false);
+  return TVK_SUCCESS;
+}
+
+TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer cmd, const TvkSimulateInfo* info) {
+  using namespace tressvk;
+  if (!context) return TVK_ERROR_INVALID_ARGUMENT;
+  Context& ctx = *context;
+  if (!cmd || !info || info->struct_size != sizeof(TvkSimulateInfo) || (info->instance_count && !info->instances))
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: command buffer, info or instances missing");
+
+  std::vector<InstanceWork> work(info->instance_count);
+  try {
+    for (uint32_t i = 0; i < info->instance_count; ++i) {
+      TvkInstance_T* inst = info->instances[i];
+      if (!inst || inst->ctx != &ctx)
+        return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: instance %u is NULL or of another context",
+                        i);
+      if (TvkResult r = prepare(ctx, *inst, work[i]); r != TVK_SUCCESS) return r;
+    }
+  } catch (const std::exception& e) {
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: %s", e.what());
+  }
+
+  // Timestamps for this frame's slice of the pool.
+  Context::TimedSlice* timed = nullptr;
+  uint32_t first_query = 0;
+  if (ctx.timestamp_pool) {
+    const uint32_t slice = static_cast<uint32_t>(ctx.frame % ctx.frames_in_flight);
+    timed = &ctx.timed_slices[slice];
+    timed->frame = ctx.frame;
+    timed->pass_names.clear();
+    timed->dispatches.clear();
+    first_query = slice * ctx.queries_per_frame;
+    ctx.vk.vkCmdResetQueryPool(cmd, ctx.timestamp_pool, first_query, ctx.queries_per_frame);
+  }
+
+  // Entry: order this frame's writes after the previous frame's accesses (draws, copies, the last simulate).
+  std::vector<VkBufferMemoryBarrier2> barriers;
+  const VkPipelineStageFlags2 earlier_users = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+                                              VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+  for (InstanceWork& w : work) {
+    for (uint32_t b : {sim::kBindingPositions, sim::kBindingPrevPositions, sim::kBindingPrevPrevPositions,
+                       sim::kBindingTangents, sim::kBindingCounters})
+      barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), earlier_users, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT));
+    w.inst->hazards = HazardTracker{};
+  }
+  record_barriers(ctx, cmd, barriers);
+
+  ctx.recorded_passes.clear();
+  const auto note_pass = [&ctx](const std::string& name) {
+    if (std::find(ctx.recorded_passes.begin(), ctx.recorded_passes.end(), name) == ctx.recorded_passes.end())
+      ctx.recorded_passes.push_back(name);
+  };
+
+  // One "slot" = one pass of one substep across every instance that runs it; barriers go between slots.
+  const auto record_slot = [&](PassId id, uint32_t step, bool per_frame) -> TvkResult {
+    std::vector<std::pair<InstanceWork*, const PassUse*>> users;
+    for (InstanceWork& w : work) {
+      if (per_frame ? w.steps == 0 : step >= w.steps) continue;
+      for (const PassUse& u : w.passes)
+        if (u.info->id == id) users.emplace_back(&w, &u);
+    }
+    if (users.empty()) return TVK_SUCCESS;
+    barriers.clear();
+    std::vector<HazardTracker::Need> named(work.size());
+    bool any = false;
+    for (auto& [w, u] : users) {
+      const HazardTracker::Need need = w->inst->hazards.before(u->info->reads, u->info->writes);
+      any |= need.any();
+      for (uint32_t b = 0; b < sim::kBindingCount; ++b) {
+        if (need.memory & (1u << b))
+          barriers.push_back(buffer_barrier(writable_buffer(*w->inst, b), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT));
+        else if (need.execution & (1u << b))
+          barriers.push_back(buffer_barrier(writable_buffer(*w->inst, b), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0,
+                                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0));
+      }
+      HazardTracker::Need& n = named[static_cast<size_t>(w - work.data())];
+      n.memory |= need.memory;
+      n.execution |= need.execution;
+    }
+    if (any) {
+      record_barriers(ctx, cmd, barriers);
+      for (size_t i = 0; i < work.size(); ++i) work[i].inst->hazards.barrier_recorded(named[i]);
+    }
+    const uint32_t pair = timed ? static_cast<uint32_t>(timed->pass_names.size()) : 0;
+    const bool time_it = timed && 2 * (pair + 1) <= ctx.queries_per_frame;
+    if (time_it)
+      ctx.vk.vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, ctx.timestamp_pool, first_query + 2 * pair);
+    VkPipeline bound = VK_NULL_HANDLE;
+    for (auto& [w, u] : users) {
+      TvkInstance_T& inst = *w->inst;
+      const auto& rest = inst.asset->rest;
+      VkPipeline pipeline = VK_NULL_HANDLE;
+      if (TvkResult r = get_pipeline(ctx, *u, rest.vertices_per_strand, rest.follow_per_guide, pipeline);
+          r != TVK_SUCCESS)
+        return r;
+      if (pipeline != bound) ctx.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+      bound = pipeline;
+      ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx.sim_pipeline_layout, 0, 1, &inst.set, 3,
+                                     w->dynamic_offsets.data());
+      const uint32_t s = per_frame ? w->steps - 1 : step;
+      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, 0};
+      ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+      const uint32_t groups = sim::dispatch_groups(u->info->granularity, rest.guide_count, rest.vertices_per_strand,
+                                                   rest.follow_per_guide, ctx.workgroup_size);
+      if (groups) ctx.vk.vkCmdDispatch(cmd, groups, 1, 1);
+      inst.hazards.pass_recorded(u->info->reads, u->info->writes);
+      note_pass(u->name);
+    }
+    if (time_it) {
+      ctx.vk.vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, ctx.timestamp_pool,
+                                  first_query + 2 * pair + 1);
+      timed->pass_names.push_back(users.front().second->name);
+      timed->dispatches.push_back(static_cast<uint32_t>(users.size()));
+    }
+    return TVK_SUCCESS;
+  };
+
+  uint32_t max_steps = 0;
+  for (const InstanceWork& w : work) max_steps = std::max(max_steps, w.steps);
+  for (uint32_t s = 0; s < max_steps; ++s)
+    for (const sim::PassInfo& p : sim::pass_table())
+      if (p.frequency == sim::Frequency::kPerSubstep)
+        if (TvkResult r = record_slot(p.id, s, false); r != TVK_SUCCESS) return r;
+  for (const sim::PassInfo& p : sim::pass_table())
+    if (p.frequency == sim::Frequency::kPerFrame)
+      if (TvkResult r = record_slot(p.id, 0, true); r != TVK_SUCCESS) return r;
+
+  // Exit: positions and tangents visible to the host's vertex shaders (and compute); counters to the host.
+  barriers.clear();
+  for (InstanceWork& w : work) {
+    for (uint32_t b : {sim::kBindingPositions, sim::kBindingTangents})
+      barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                        VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
+    barriers.push_back(buffer_barrier(w.inst->counters.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                      VK_ACCESS_2_HOST_READ_BIT));
+    TvkInstance_T& inst = *w.inst;
+    inst.steps += w.steps;
+    inst.steps_last_frame = w.steps;
+    ++inst.frames;
+    inst.sim_origin = w.plan.sim_origin;
+    inst.frame.teleport = 0;
+    inst.frame.reset = 0;
+    inst.frame.dt = 0.0f;
+  }
+  record_barriers(ctx, cmd, barriers);
+  return TVK_SUCCESS;
+}
+
+uint32_t tressvk_get_recorded_passes(TvkContext context, const char** names, uint32_t capacity) {
+  if (!context) return 0;
+  const auto count = static_cast<uint32_t>(context->recorded_passes.size());
+  for (uint32_t i = 0; i < count && i < capacity && names; ++i) names[i] = context->recorded_passes[i].c_str();
+  return count;
+}
+
+uint32_t tressvk_get_pass_timings(TvkContext context, TvkPassTiming* timings, uint32_t capacity) {
+  if (!context || !context->timestamp_pool || context->frame < context->frames_in_flight) return 0;
+  Context& ctx = *context;
+  const uint64_t done = ctx.frame - ctx.frames_in_flight;
+  const uint32_t slice = static_cast<uint32_t>(done % ctx.frames_in_flight);
+  const Context::TimedSlice& t = ctx.timed_slices[slice];
+  if (t.frame != done || t.pass_names.empty()) return 0;
+  std::vector<uint64_t> stamps(2 * t.pass_names.size());
+  if (ctx.vk.vkGetQueryPoolResults(ctx.info.device, ctx.timestamp_pool, slice * ctx.queries_per_frame,
+                                   static_cast<uint32_t>(stamps.size()), stamps.size() * sizeof(uint64_t),
+                                   stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
+    return 0;
+  // Sum the slots of each pass name (one slot per substep), in the order names first appear.
+  std::vector<TvkPassTiming> out;
+  for (size_t i = 0; i < t.pass_names.size(); ++i) {
+    const double ms = double(stamps[2 * i + 1] - stamps[2 * i]) * ctx.timestamp_period_ns * 1e-6;
+    auto it = std::find_if(out.begin(), out.end(), [&](const TvkPassTiming& p) { return t.pass_names[i] == p.name; });
+    if (it == out.end()) {
+      // Names live in recorded_passes (stable until the next simulate) or in the slice itself.
+      out.push_back({t.pass_names[i].c_str(), 0, 0.0});
+      it = out.end() - 1;
+    }
+    it->dispatches += t.dispatches[i];
+    it->milliseconds += ms;
+  }
+  for (size_t i = 0; i < out.size() && i < capacity && timings; ++i) timings[i] = out[i];
+  return static_cast<uint32_t>(out.size());
+}
+
+}  // extern "C"
