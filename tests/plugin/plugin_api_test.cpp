@@ -1,0 +1,98 @@
+// The plugin's C interface: context, asset loading and its errors, instance parameters, memory reporting.
+#include "sim_harness.hpp"
+
+#include <tressvk/asset_io.hpp>
+
+#include <catch2/catch_test_macros.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+using namespace tressvk;
+
+TEST_CASE("an asset loads from memory and reports its counts", "[plugin]") {
+  test::PluginContext ctx = test::create_plugin_context();
+  const asset::HairAsset hair = test::small_groom("straight", 40, 2);
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  TvkAssetInfo info{};
+  REQUIRE(tressvk_get_asset_info(a, &info) == TVK_SUCCESS);
+  CHECK(info.guide_count == 40);
+  CHECK(info.follow_per_guide == 2);
+  CHECK(info.total_strands == 120);
+  CHECK(info.vertices_per_strand == hair.vertices_per_strand);
+  CHECK(info.median_strand_length > 0.1f);
+  CHECK(std::string(tressvk_get_asset_group_name(a, 0)) == hair.groups[0].name);
+  TvkMemoryUsage usage{};
+  REQUIRE(tressvk_get_memory_usage(ctx.get(), &usage) == TVK_SUCCESS);
+  CHECK(usage.device_bytes >= 40ull * hair.vertices_per_strand * 16);
+  tressvk_destroy_asset(a);
+}
+
+TEST_CASE("a corrupt asset is refused with a message naming the problem", "[plugin]") {
+  test::PluginContext ctx = test::create_plugin_context();
+  std::vector<std::byte> bytes = asset::write(test::small_groom("straight", 8));
+  bytes[bytes.size() / 2] ^= std::byte{0x40};
+  TvkAsset a = nullptr;
+  TvkResult r = TVK_SUCCESS;
+  test::run_commands([&](VkCommandBuffer cmd) {
+    TvkAssetLoadInfo info{};
+    info.struct_size = sizeof(info);
+    info.data = bytes.data();
+    info.size = bytes.size();
+    info.upload_command_buffer = cmd;
+    r = tressvk_load_asset(ctx.get(), &info, &a);
+  });
+  CHECK(r == TVK_ERROR_INVALID_ASSET);
+  CHECK(a == nullptr);
+  const std::string message = tressvk_last_error(ctx.get());
+  INFO(message);
+  CHECK(message.find("<memory>") != std::string::npos);
+  CHECK(message.size() > 12);
+}
+
+TEST_CASE("a missing asset file is an I/O error naming the file", "[plugin]") {
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = nullptr;
+  TvkResult r = TVK_SUCCESS;
+  test::run_commands([&](VkCommandBuffer cmd) {
+    TvkAssetLoadInfo info{};
+    info.struct_size = sizeof(info);
+    info.path = "/nonexistent/hair.tvkhair";
+    info.upload_command_buffer = cmd;
+    r = tressvk_load_asset(ctx.get(), &info, &a);
+  });
+  CHECK(r == TVK_ERROR_IO);
+  CHECK(std::string(tressvk_last_error(ctx.get())).find("/nonexistent/hair.tvkhair") != std::string::npos);
+}
+
+TEST_CASE("bad arguments return codes, never crash", "[plugin]") {
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = nullptr;
+  CHECK(tressvk_load_asset(ctx.get(), nullptr, &a) == TVK_ERROR_INVALID_ARGUMENT);
+  CHECK(tressvk_load_asset(nullptr, nullptr, &a) == TVK_ERROR_INVALID_ARGUMENT);
+  TvkInstance inst = nullptr;
+  TvkInstanceCreateInfo ici{};
+  ici.struct_size = sizeof(ici);
+  CHECK(tressvk_create_instance(ctx.get(), &ici, &inst) == TVK_ERROR_INVALID_ARGUMENT);
+  TvkSimulateInfo si{};
+  si.struct_size = sizeof(si) + 1;
+  CHECK(tressvk_cmd_simulate(ctx.get(), VK_NULL_HANDLE, &si) == TVK_ERROR_INVALID_ARGUMENT);
+  CHECK(tressvk_check_version(TVK_VERSION_NUM, sizeof(TvkContextCreateInfo)) == TVK_SUCCESS);
+  CHECK(tressvk_check_version(TVK_VERSION_NUM + 100, sizeof(TvkContextCreateInfo)) == TVK_ERROR_VERSION_MISMATCH);
+}
+
+TEST_CASE("out-of-range parameters are refused naming the field", "[plugin]") {
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), test::small_groom("straight", 8));
+  {
+    test::GpuInstance inst(ctx.get(), a, {}, TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT);
+    TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
+    p.local_stiffness = 2.0f;
+    CHECK(tressvk_set_sim_params(inst.handle(), 0, &p) == TVK_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(tressvk_last_error(ctx.get())).find("local_stiffness") != std::string::npos);
+    p = TVK_SIM_PARAMS_DEFAULT_INIT;
+    CHECK(tressvk_set_sim_params(inst.handle(), 7, &p) == TVK_ERROR_INVALID_ARGUMENT);
+  }
+  tressvk_destroy_asset(a);
+}

@@ -1,0 +1,154 @@
+#include "sim_harness.hpp"
+
+#include <tressvk/asset_io.hpp>
+#include <tressvk/baker/procedural.hpp>
+
+#include <catch2/catch_test_macros.hpp>
+
+#include <cstring>
+
+namespace tressvk::test {
+
+TvkAsset load_asset(TvkContext ctx, const asset::HairAsset& hair) {
+  const std::vector<std::byte> bytes = asset::write(hair);
+  TvkAsset handle = nullptr;
+  TvkResult result = TVK_SUCCESS;
+  run_commands([&](VkCommandBuffer cmd) {
+    TvkAssetLoadInfo info{};
+    info.struct_size = sizeof(info);
+    info.data = bytes.data();
+    info.size = bytes.size();
+    info.upload_command_buffer = cmd;
+    result = tressvk_load_asset(ctx, &info, &handle);
+  });
+  INFO(tressvk_last_error(ctx));
+  REQUIRE(result == TVK_SUCCESS);
+  return handle;
+}
+
+GpuInstance::GpuInstance(TvkContext ctx, TvkAsset asset, const std::vector<TvkSimParams>& params,
+                         const TvkSimSettings& settings)
+    : ctx_(ctx) {
+  TvkInstanceCreateInfo info{};
+  info.struct_size = sizeof(info);
+  info.asset = asset;
+  info.settings = &settings;
+  info.params = params.empty() ? nullptr : &params[0];
+  const TvkResult r = tressvk_create_instance(ctx, &info, &instance_);
+  INFO(tressvk_last_error(ctx));
+  REQUIRE(r == TVK_SUCCESS);
+  for (uint32_t g = 0; g < params.size(); ++g) REQUIRE(tressvk_set_sim_params(instance_, g, &params[g]) == TVK_SUCCESS);
+}
+
+GpuInstance::~GpuInstance() {
+  // The fixture waits for each submission, so the instance's resources are free to go.
+  tressvk_destroy_instance(instance_);
+}
+
+void GpuInstance::run_frame(const TvkSimFrame& frame) { run_frame_batched(ctx_, {this}, {frame}); }
+
+void run_frame_batched(TvkContext ctx, const std::vector<GpuInstance*>& instances,
+                       const std::vector<TvkSimFrame>& frames) {
+  std::vector<TvkInstance> handles;
+  for (size_t i = 0; i < instances.size(); ++i) {
+    REQUIRE(tressvk_set_frame(instances[i]->handle(), &frames[i]) == TVK_SUCCESS);
+    handles.push_back(instances[i]->handle());
+  }
+  REQUIRE(tressvk_new_frame(ctx) == TVK_SUCCESS);
+  TvkResult r = TVK_SUCCESS;
+  run_commands([&](VkCommandBuffer cmd) {
+    TvkSimulateInfo info{};
+    info.struct_size = sizeof(info);
+    info.instance_count = static_cast<uint32_t>(handles.size());
+    info.instances = handles.data();
+    r = tressvk_cmd_simulate(ctx, cmd, &info);
+  });
+  INFO(tressvk_last_error(ctx));
+  REQUIRE(r == TVK_SUCCESS);
+  for (GpuInstance* inst : instances) inst->read_state();
+}
+
+void GpuInstance::read_state() {
+  TvkInstanceBuffers b{};
+  REQUIRE(tressvk_get_instance_buffers(instance_, &b) == TVK_SUCCESS);
+  engine::Buffer pos = make_buffer(b.positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
+  engine::Buffer prev =
+      make_buffer(b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
+  engine::Buffer prevprev =
+      make_buffer(b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
+  engine::Buffer tan = make_buffer(b.tangents_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
+  run_commands([&](VkCommandBuffer cmd) {
+    // The simulation leaves its writes visible to shader reads; a host copy brings its own barrier.
+    VkMemoryBarrier2 barrier{};
+    barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+    VkDependencyInfo dep{};
+    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    VkBufferCopy region{0, 0, b.positions_size};
+    vkCmdCopyBuffer(cmd, b.positions, pos.handle(), 1, &region);
+    region.size = b.previous_positions_size;
+    vkCmdCopyBuffer(cmd, b.previous_positions, prev.handle(), 1, &region);
+    vkCmdCopyBuffer(cmd, b.previous_previous_positions, prevprev.handle(), 1, &region);
+    region.size = b.tangents_size;
+    vkCmdCopyBuffer(cmd, b.tangents, tan.handle(), 1, &region);
+  });
+  state_.pos = read_buffer<sim::Vec4>(pos);
+  state_.prev = read_buffer<sim::Vec4>(prev);
+  state_.tangent = read_buffer<sim::Vec4>(tan);
+  state_.prevprev = read_buffer<sim::Vec4>(prevprev);
+}
+
+std::vector<std::string> GpuInstance::recorded_passes() const {
+  const uint32_t n = tressvk_get_recorded_passes(ctx_, nullptr, 0);
+  std::vector<const char*> names(n);
+  tressvk_get_recorded_passes(ctx_, names.data(), n);
+  return {names.begin(), names.end()};
+}
+
+TvkInstanceStats GpuInstance::stats() const {
+  TvkInstanceStats s{};
+  REQUIRE(tressvk_get_instance_stats(instance_, &s) == TVK_SUCCESS);
+  return s;
+}
+
+void GpuInstance::poke_position(size_t vertex, const sim::Vec4& value) {
+  TvkInstanceBuffers b{};
+  REQUIRE(tressvk_get_instance_buffers(instance_, &b) == TVK_SUCCESS);
+  run_commands([&](VkCommandBuffer cmd) {
+    VkMemoryBarrier2 before{};
+    before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+    before.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+    before.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    before.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    before.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    VkDependencyInfo dep{};
+    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &before;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    vkCmdUpdateBuffer(cmd, b.positions, vertex * sizeof(sim::Vec4), sizeof(sim::Vec4), value.data());
+    VkMemoryBarrier2 after{};
+    after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+    after.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    after.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    after.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    after.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    dep.pMemoryBarriers = &after;
+    vkCmdPipelineBarrier2(cmd, &dep);
+  });
+}
+
+asset::HairAsset small_groom(const std::string& name, uint32_t guides, uint32_t follows) {
+  baker::BuiltinGroomOptions options;
+  options.guide_count = guides;
+  options.follow_per_guide = follows;
+  return baker::make_builtin_groom(name, options);
+}
+
+}  // namespace tressvk::test

@@ -1,0 +1,57 @@
+// Test harness: one simulated hair instance driven through the plugin's C interface on the shared validated
+// device, with its GPU state read back after every frame, next to the double-precision reference.
+#pragma once
+
+#include <tressvk/asset.hpp>
+#include <tressvk/reference/simulator.hpp>
+#include <tressvk/test/vulkan.hpp>
+#include <tressvk/tressvk.h>
+
+#include <string>
+#include <vector>
+
+namespace tressvk::test {
+
+struct GpuState {
+  std::vector<sim::Vec4> pos;       // G*(K+1)*N
+  std::vector<sim::Vec4> prev;      // G*N
+  std::vector<sim::Vec4> prevprev;  // G*N
+  std::vector<sim::Vec4> tangent;   // G*(K+1)*N
+};
+
+// Serialises an asset and loads it through the plugin (exercising the reader and the recorded upload).
+TvkAsset load_asset(TvkContext ctx, const asset::HairAsset& hair);
+
+class GpuInstance {
+ public:
+  GpuInstance(TvkContext ctx, TvkAsset asset, const std::vector<TvkSimParams>& params,
+              const TvkSimSettings& settings);
+  ~GpuInstance();
+  GpuInstance(const GpuInstance&) = delete;
+  GpuInstance& operator=(const GpuInstance&) = delete;
+
+  TvkInstance handle() const { return instance_; }
+  // set_frame + new_frame + simulate, submitted and waited for; then the state is read back.
+  void run_frame(const TvkSimFrame& frame);
+  const GpuState& state() const { return state_; }
+  std::vector<std::string> recorded_passes() const;
+  TvkInstanceStats stats() const;
+  // Overwrites one position on the GPU (fault injection), recorded with the barriers it needs.
+  void poke_position(size_t vertex, const sim::Vec4& value);
+  // Copies positions, previous positions and tangents back (after a frame).
+  void read_state();
+
+ private:
+  TvkContext ctx_;
+  TvkInstance instance_ = nullptr;
+  GpuState state_;
+};
+
+// Runs several instances in one simulate call (batched recording), then reads each one back.
+void run_frame_batched(TvkContext ctx, const std::vector<GpuInstance*>& instances,
+                       const std::vector<TvkSimFrame>& frames);
+
+// A small built-in groom for lavapipe-sized tests.
+asset::HairAsset small_groom(const std::string& name, uint32_t guides, uint32_t follows = 0);
+
+}  // namespace tressvk::test

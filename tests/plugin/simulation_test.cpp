@@ -1,0 +1,310 @@
+// The GPU simulation against the double-precision reference of the same model, scene by scene.
+//
+// The acceptance measure is the one-frame step error: before each frame the reference is loaded with the GPU's
+// state, both advance one frame with identical inputs, and the largest vertex distance is divided by the groom's
+// median strand length. It isolates float32 rounding and GPU/CPU differences in one frame from the chaotic growth
+// of tiny differences over many frames (which the trajectory error in tressvk-bench reports).
+#include "sim_harness.hpp"
+
+#include <tressvk/baker/bake.hpp>
+#include <tressvk/baker/import.hpp>
+#include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/scenes.hpp>
+
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/generators/catch_generators.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+using namespace tressvk;
+
+namespace {
+
+// The bar: one frame of GPU simulation is within 1e-5 of the median strand length of the reference.
+constexpr double kStepErrorBound = 1e-5;
+// Default settings must keep every segment within 5% of its rest length in every scene.
+constexpr double kStretchBound = 0.05;
+
+struct SceneResult {
+  double step_error_max = 0;
+  double stretch_max = 0;
+  uint32_t nan_strands = 0;
+  uint32_t exploded_strands = 0;
+  std::vector<std::string> passes;  // of the last frame
+};
+
+std::vector<TvkSimParams> default_params(const asset::HairAsset& hair) {
+  return std::vector<TvkSimParams>(std::max<size_t>(1, hair.groups.size()), TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
+}
+
+SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, uint32_t frames,
+                      std::vector<TvkSimParams> params = {},
+                      TvkSimSettings settings = TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT) {
+  if (params.empty()) params = default_params(hair);
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  SceneResult result;
+  {
+    test::GpuInstance gpu(ctx.get(), a, params, settings);
+    reference::Simulator ref(hair, params, settings);
+    const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
+    const double median = ref.median_strand_length();
+    for (uint32_t f = 0; f < frames; ++f) {
+      const TvkSimFrame frame = reference::scene_frame(scene, f, geometry);
+      if (f > 0) ref.set_state(gpu.state().pos, gpu.state().prev, gpu.state().prevprev);
+      ref.advance(frame);
+      gpu.run_frame(frame);
+      const auto err = reference::position_error(std::span<const sim::Vec4>(gpu.state().pos), ref.positions(), median);
+      result.step_error_max = std::max(result.step_error_max, err.max_rel);
+      const auto st = reference::stretch(std::span<const sim::Vec4>(gpu.state().pos), ref.rest());
+      result.stretch_max = std::max(result.stretch_max, st.max);
+      const auto health = reference::health(std::span<const sim::Vec4>(gpu.state().pos), ref.rest());
+      result.nan_strands = std::max(result.nan_strands, health.nan_strands);
+      result.exploded_strands = std::max(result.exploded_strands, health.exploded_strands);
+    }
+    result.passes = gpu.recorded_passes();
+  }
+  tressvk_destroy_asset(a);
+  return result;
+}
+
+bool has_pass_containing(const std::vector<std::string>& passes, const std::string& what) {
+  return std::any_of(passes.begin(), passes.end(), [&](const std::string& p) { return p.find(what) != std::string::npos; });
+}
+
+void check_scene(const SceneResult& r) {
+  CHECK(r.step_error_max <= kStepErrorBound);
+  CHECK(r.nan_strands == 0);
+  CHECK(r.exploded_strands == 0);
+  CHECK(r.stretch_max <= kStretchBound);
+}
+
+}  // namespace
+
+TEST_CASE("GPU matches the reference in every scene with every built-in groom", "[plugin][simulation]") {
+  const std::string groom = GENERATE("straight", "curly", "long128");
+  const std::string scene = GENERATE("settle", "shake", "run", "teleport", "wind", "hitch", "far");
+  // Small grooms keep lavapipe fast; 75 frames include a teleport (frame 60) and many hitches.
+  const asset::HairAsset hair = test::small_groom(groom, groom == "long128" ? 16 : 32, groom == "straight" ? 1 : 0);
+  const SceneResult r = run_scene(hair, scene, 75);
+  INFO(groom << " / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max);
+  check_scene(r);
+}
+
+TEST_CASE("GPU matches the reference on the baked Ratboy mohawk with 2 follow hairs", "[plugin][simulation][data]") {
+  const std::filesystem::path tfx = test::data_file("tressfx/ratboy/Ratboy_mohawk.tfx");
+  baker::RawGroom raw = baker::import_tfx(tfx);
+  baker::apply_tfxbone(raw, test::data_file("tressfx/ratboy/Ratboy_mohawk.tfxbone"));
+  baker::BakeOptions options;
+  options.follow_per_guide = 2;
+  const asset::HairAsset hair = baker::bake(raw, options);
+  const std::string scene = GENERATE("settle", "shake", "run", "teleport", "wind", "hitch", "far");
+  const SceneResult r = run_scene(hair, scene, scene == "teleport" ? 65 : 40);
+  INFO("Ratboy / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max);
+  check_scene(r);
+}
+
+TEST_CASE("passes are recorded only for what the scene uses", "[plugin][simulation]") {
+  const asset::HairAsset hair = test::small_groom("straight", 16);
+  SECTION("settle: no wind, collision or follow pass") {
+    const SceneResult r = run_scene(hair, "settle", 3);
+    INFO(r.passes.size() << " passes");
+    CHECK(has_pass_containing(r.passes, "integrate"));
+    CHECK(has_pass_containing(r.passes, "length"));
+    CHECK_FALSE(has_pass_containing(r.passes, "wind"));
+    CHECK_FALSE(has_pass_containing(r.passes, "collision"));
+    CHECK_FALSE(has_pass_containing(r.passes, "follow"));
+  }
+  SECTION("run: collision") {
+    CHECK(has_pass_containing(run_scene(hair, "run", 3).passes, "collision"));
+  }
+  SECTION("wind: wind, and no collision") {
+    const SceneResult r = run_scene(hair, "wind", 3);
+    CHECK(has_pass_containing(r.passes, "wind"));
+    CHECK_FALSE(has_pass_containing(r.passes, "collision"));
+  }
+  SECTION("VSP and local shape switched off: their passes disappear") {
+    std::vector<TvkSimParams> params = default_params(hair);
+    params[0].vsp_coefficient = 0.0f;
+    params[0].local_stiffness = 0.0f;
+    const SceneResult r = run_scene(hair, "shake", 3, params);
+    CHECK_FALSE(has_pass_containing(r.passes, "vsp"));
+    CHECK_FALSE(has_pass_containing(r.passes, "local_shape"));
+    CHECK(r.step_error_max <= kStepErrorBound);
+  }
+  SECTION("follow hairs: a follow pass") {
+    CHECK(has_pass_containing(run_scene(test::small_groom("straight", 16, 2), "settle", 3).passes, "follow"));
+  }
+}
+
+TEST_CASE("each pass alone matches the reference", "[plugin][simulation]") {
+  // Switching the other terms off isolates one pass's GPU/CPU agreement.
+  const asset::HairAsset hair = test::small_groom("curly", 24, 1);
+  std::vector<TvkSimParams> params = default_params(hair);
+  TvkSimParams& p = params[0];
+  p.vsp_coefficient = 0;
+  p.local_stiffness = 0;
+  p.global_stiffness = 0;
+  p.max_speed = 0;
+  const std::string only = GENERATE("length", "global", "vsp", "local_shape", "clamp");
+  if (only == "global") p.global_stiffness = 0.3f;
+  if (only == "vsp") p.vsp_coefficient = 0.9f;
+  if (only == "local_shape") p.local_stiffness = 0.9f;
+  if (only == "clamp") p.max_speed = 0.5f;  // low enough to act while shaking
+  const SceneResult r = run_scene(hair, "shake", 40, params);
+  INFO(only << ": step error " << r.step_error_max);
+  CHECK(r.step_error_max <= kStepErrorBound);
+  CHECK(r.nan_strands == 0);
+}
+
+TEST_CASE("the far scene (10 km from the origin) matches shake", "[plugin][simulation]") {
+  const asset::HairAsset hair = test::small_groom("straight", 24);
+  const auto params = default_params(hair);
+  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  {
+    test::GpuInstance near_inst(ctx.get(), a, params, settings), far_inst(ctx.get(), a, params, settings);
+    reference::Simulator ref(hair, params, settings);
+    const auto geometry = reference::scene_geometry(ref.rest());
+    double worst = 0;
+    for (uint32_t f = 0; f < 60; ++f) {
+      test::run_frame_batched(ctx.get(), {&near_inst, &far_inst},
+                              {reference::scene_frame("shake", f, geometry), reference::scene_frame("far", f, geometry)});
+      const auto e = reference::position_error(std::span<const sim::Vec4>(near_inst.state().pos),
+                                               std::span<const sim::Vec4>(far_inst.state().pos),
+                                               ref.median_strand_length());
+      worst = std::max(worst, e.max_rel);
+    }
+    INFO("far vs shake, max relative difference " << worst);
+    CHECK(worst <= 1e-5);
+  }
+  tressvk_destroy_asset(a);
+}
+
+TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][simulation]") {
+  // The TressFX defect where instances share one constant buffer must not exist: two instances of one asset with
+  // different stiffness, recorded in one simulate call, each match their own reference.
+  const asset::HairAsset hair = test::small_groom("straight", 24);
+  std::vector<TvkSimParams> soft = default_params(hair), stiff = default_params(hair);
+  soft[0].global_stiffness = 0.0f;
+  soft[0].local_stiffness = 0.1f;
+  stiff[0].global_stiffness = 0.5f;
+  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  {
+    test::GpuInstance g1(ctx.get(), a, soft, settings), g2(ctx.get(), a, stiff, settings);
+    reference::Simulator r1(hair, soft, settings), r2(hair, stiff, settings);
+    const auto geometry = reference::scene_geometry(r1.rest());
+    double e1 = 0, e2 = 0, apart = 0;
+    for (uint32_t f = 0; f < 40; ++f) {
+      const TvkSimFrame frame = reference::scene_frame("shake", f, geometry);
+      if (f > 0) {
+        r1.set_state(g1.state().pos, g1.state().prev, g1.state().prevprev);
+        r2.set_state(g2.state().pos, g2.state().prev, g2.state().prevprev);
+      }
+      r1.advance(frame);
+      r2.advance(frame);
+      test::run_frame_batched(ctx.get(), {&g1, &g2}, {frame, frame});
+      const double m = r1.median_strand_length();
+      e1 = std::max(e1, reference::position_error(std::span<const sim::Vec4>(g1.state().pos), r1.positions(), m).max_rel);
+      e2 = std::max(e2, reference::position_error(std::span<const sim::Vec4>(g2.state().pos), r2.positions(), m).max_rel);
+      apart = std::max(apart, reference::position_error(std::span<const sim::Vec4>(g1.state().pos),
+                                                        std::span<const sim::Vec4>(g2.state().pos), m).max_rel);
+    }
+    INFO("errors " << e1 << ", " << e2 << "; the two instances differ by up to " << apart);
+    CHECK(e1 <= kStepErrorBound);
+    CHECK(e2 <= kStepErrorBound);
+    CHECK(apart > 1e-3);  // different parameters really took effect
+  }
+  tressvk_destroy_asset(a);
+}
+
+TEST_CASE("a strand that goes non-finite is reset and counted, and nothing else is touched", "[plugin][simulation]") {
+  const asset::HairAsset hair = test::small_groom("straight", 16);
+  const auto params = default_params(hair);
+  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  {
+    test::GpuInstance gpu(ctx.get(), a, params, settings);
+    reference::Simulator ref(hair, params, settings);
+    const auto geometry = reference::scene_geometry(ref.rest());
+    const uint32_t n = hair.vertices_per_strand;
+    for (uint32_t f = 0; f < 10; ++f) gpu.run_frame(reference::scene_frame("settle", f, geometry));
+    CHECK(gpu.stats().nonfinite_strand_resets == 0);
+    const size_t poisoned = size_t{3} * n + n / 2;  // guide 3, mid-strand
+    gpu.poke_position(poisoned, {NAN, NAN, NAN, 1.0f});
+    // The reference gets the same state and the same poison.
+    ref.set_state(gpu.state().pos, gpu.state().prev, gpu.state().prevprev);
+    ref.mutable_positions()[poisoned] = {NAN, NAN, NAN};
+    const TvkSimFrame frame = reference::scene_frame("settle", 10, geometry);
+    ref.advance(frame);
+    gpu.run_frame(frame);
+    CHECK(gpu.stats().nonfinite_strand_resets == 1);
+    CHECK(ref.nonfinite_resets() == 1);
+    const auto health = reference::health(std::span<const sim::Vec4>(gpu.state().pos), ref.rest());
+    CHECK(health.nan_strands == 0);
+    const auto err = reference::position_error(std::span<const sim::Vec4>(gpu.state().pos), ref.positions(),
+                                               ref.median_strand_length());
+    CHECK(err.max_rel <= kStepErrorBound);
+  }
+  tressvk_destroy_asset(a);
+}
+
+TEST_CASE("without gravity the rest pose is a fixed point on the GPU", "[plugin][simulation]") {
+  const asset::HairAsset hair = test::small_groom("curly", 16);
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  settings.gravity[1] = 0.0f;
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  {
+    test::GpuInstance gpu(ctx.get(), a, default_params(hair), settings);
+    reference::Simulator ref(hair, default_params(hair), settings);
+    const auto geometry = reference::scene_geometry(ref.rest());
+    gpu.run_frame(reference::scene_frame("settle", 0, geometry));
+    const auto first = gpu.state().pos;
+    for (uint32_t f = 1; f < 60; ++f) gpu.run_frame(reference::scene_frame("settle", f, geometry));
+    const auto drift = reference::position_error(std::span<const sim::Vec4>(first),
+                                                 std::span<const sim::Vec4>(gpu.state().pos), ref.median_strand_length());
+    INFO("drift after 1 s: " << drift.max_rel);
+    // float32 rounding of one step is ~1e-7 of a strand; a second of steps must not accumulate past 1e-6.
+    CHECK(drift.max_rel <= 1e-6);
+  }
+  tressvk_destroy_asset(a);
+}
+
+TEST_CASE("pinned roots follow the head exactly", "[plugin][simulation]") {
+  const asset::HairAsset hair = test::small_groom("straight", 16);
+  const auto params = default_params(hair);
+  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  {
+    test::GpuInstance gpu(ctx.get(), a, params, settings);
+    reference::Simulator ref(hair, params, settings);
+    const auto geometry = reference::scene_geometry(ref.rest());
+    const uint32_t n = hair.vertices_per_strand;
+    double worst = 0;
+    for (uint32_t f = 0; f < 30; ++f) {
+      const TvkSimFrame frame = reference::scene_frame("shake", f, geometry);
+      const reference::FramePlan plan = ref.advance(frame);
+      gpu.run_frame(frame);
+      if (plan.steps.empty()) continue;
+      for (uint32_t g = 0; g < ref.rest().guide_count; ++g)
+        for (uint32_t v = 0; v < n; ++v) {
+          const size_t i = size_t{g} * n + v;
+          if (ref.rest().inv_mass[i] != 0.0) continue;
+          const reference::Vec3 goal = ref.skinned_rest(plan.steps.back(), i);
+          const auto& p = gpu.state().pos[i];
+          worst = std::max(worst, reference::length(reference::Vec3{p[0], p[1], p[2]} - goal));
+        }
+    }
+    INFO("largest pinned-vertex distance from the skinned rest pose: " << worst << " m");
+    CHECK(worst <= 1e-6 * ref.median_strand_length());
+  }
+  tressvk_destroy_asset(a);
+}
