@@ -184,6 +184,9 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   }
 
   Pose prev_pose = last_;
+  // The translation part of every step's origin shift is an equal slice of the frame's translation, formed as a
+  // difference first: a far-away instance (large T) then gives bit-identical shifts to one at the origin.
+  const Vec3 slice = n > 0 ? (now.t - last_.t) / static_cast<double>(n) : Vec3{};
   for (uint32_t k = 1; k <= n; ++k) {
     double alpha = static_cast<double>(k) / static_cast<double>(n);
     Pose pose{mix(last_.t, now.t, alpha), slerp(last_.r, now.r, alpha)};
@@ -196,9 +199,8 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     }
     ++step_counter_;
     Substep st = make_step(pose, bones, index++);
-    // The origin moved by (T_k - T_{k-1}) + (R_k a - R_{k-1} a); the two parts are formed separately so that a
-    // far translation cancels exactly.
-    st.origin_shift = (pose.t - prev_pose.t) + (quat_rotate(pose.r, a) - quat_rotate(prev_pose.r, a));
+    // The origin moved by (T_k - T_{k-1}) + (R_k a - R_{k-1} a).
+    st.origin_shift = slice + (quat_rotate(pose.r, a) - quat_rotate(prev_pose.r, a));
     if (pending_teleport_) {
       st.teleport = pending_turn_;
       pending_teleport_ = false;

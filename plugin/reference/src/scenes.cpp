@@ -36,7 +36,11 @@ bool solve4(std::array<std::array<double, 5>, 4> m, std::array<double, 4>& x) {
 // Places the instance so that the head centre is the pivot of rotation q, then adds offset.
 TvkInstanceTransform pose_about(const SceneGeometry& geo, Quat q, Vec3 offset) {
   const Vec3 c = geo.head_centre;
-  const Vec3 t = (c - quat_rotate(q, c)) + offset;
+  // Translations are quantised to 2^-30 m (about 1 nm) so that adding the far scene's 10 km is exact in double:
+  // far and shake then receive the same motion to the last bit and differ only by what the simulation does.
+  auto quantise = [](double x) { return std::ldexp(std::round(std::ldexp(x, 30)), -30); };
+  Vec3 t = (c - quat_rotate(q, c)) + offset;
+  t = {quantise(t.x), quantise(t.y), quantise(t.z)};
   TvkInstanceTransform x = TVK_INSTANCE_TRANSFORM_DEFAULT_INIT;
   x.translation[0] = t.x;
   x.translation[1] = t.y;

@@ -1,0 +1,171 @@
+// The frame planner: fixed steps with an accumulator, the cap, interpolation, teleport/reset, far translation,
+// and the GPU conversion.
+#include <catch2/catch_approx.hpp>
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_string.hpp>
+
+#include <cmath>
+
+#include "helpers.hpp"
+
+using namespace tvk_test;
+
+namespace {
+
+TvkSimFrame still_frame(double dt) {
+  TvkSimFrame f{};
+  f.dt = static_cast<float>(dt);
+  f.transform = TVK_INSTANCE_TRANSFORM_DEFAULT_INIT;
+  f.wind = TVK_WIND_DEFAULT_INIT;
+  return f;
+}
+
+// All non-reset step times of a sequence of frames of length dt adding up to `total`.
+std::vector<double> step_times(double dt, int frames) {
+  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  std::vector<double> times;
+  for (int i = 0; i < frames; ++i) {
+    for (const Substep& s : planner.plan(still_frame(dt)).steps) {
+      if (!s.reset) times.push_back(s.time);
+    }
+  }
+  return times;
+}
+
+}  // namespace
+
+TEST_CASE("planner: same steps for the same total time however the frames are split", "[reference][planner]") {
+  const auto a = step_times(1.0 / 60.0, 60);
+  const auto b = step_times(1.0 / 120.0, 120);
+  const auto c = step_times(1.0 / 30.0, 30);
+  const auto d = step_times(1.0 / 144.0, 144);
+  REQUIRE(a.size() == 120);
+  REQUIRE(b.size() == a.size());
+  REQUIRE(c.size() == a.size());
+  REQUIRE(d.size() == a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    REQUIRE(a[i] == b[i]);
+    REQUIRE(a[i] == c[i]);
+    REQUIRE(a[i] == d[i]);
+  }
+}
+
+TEST_CASE("planner: every step has the fixed length and the first frame resets", "[reference][planner]") {
+  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  FramePlan first = planner.plan(still_frame(1.0 / 60.0));
+  REQUIRE(first.steps.size() == 3);  // the zero-time reset step, then two steps of 1/120 s
+  CHECK(first.steps[0].reset);
+  CHECK_FALSE(first.steps[1].reset);
+  for (const Substep& s : first.steps) CHECK(s.h == 1.0 / 120.0);
+  FramePlan second = planner.plan(still_frame(1.0 / 60.0));
+  REQUIRE(second.steps.size() == 2);
+  CHECK_FALSE(second.steps[0].reset);
+}
+
+TEST_CASE("planner: a 0.25 s hitch is capped and the surplus dropped, not owed", "[reference][planner]") {
+  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  planner.plan(still_frame(1.0 / 60.0));
+  FramePlan hitch = planner.plan(still_frame(0.25));
+  CHECK(hitch.steps.size() == 4);
+  CHECK(hitch.dropped_steps == 26);
+  FramePlan after = planner.plan(still_frame(1.0 / 60.0));
+  CHECK(after.steps.size() == 2);  // nothing carried over from the hitch
+}
+
+TEST_CASE("planner: motion is interpolated across the steps of a frame", "[reference][planner]") {
+  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  planner.plan(still_frame(1.0 / 60.0));
+  TvkSimFrame f = still_frame(1.0 / 30.0);  // 4 steps
+  f.transform.translation[0] = 0.4;
+  FramePlan plan = planner.plan(f);
+  REQUIRE(plan.steps.size() == 4);
+  for (const Substep& s : plan.steps) {
+    CHECK(s.move_state);
+    CHECK(s.origin_shift.x == Catch::Approx(0.1).margin(1e-15));
+  }
+  CHECK(plan.sim_origin[0] == Catch::Approx(0.4).margin(1e-15));
+}
+
+TEST_CASE("planner: a frame shorter than a step carries its motion to the next step", "[reference][planner]") {
+  TvkSimSettings s = default_settings();
+  FramePlanner planner(s, {0, 0, 0}, 0);
+  planner.plan(still_frame(1.0 / 120.0));
+  TvkSimFrame f = still_frame(1.0 / 240.0);
+  f.transform.translation[1] = 0.2;
+  CHECK(planner.plan(f).steps.empty());
+  f.transform.translation[1] = 0.3;
+  FramePlan plan = planner.plan(f);
+  REQUIRE(plan.steps.size() == 1);
+  CHECK(plan.steps[0].origin_shift.y == Catch::Approx(0.3).margin(1e-15));
+}
+
+TEST_CASE("planner: a teleport is a rotation of the state about the origin and no shift", "[reference][planner]") {
+  FramePlanner planner(default_settings(), {0.0, 1.5, 0.0}, 0);
+  planner.plan(still_frame(1.0 / 60.0));
+  TvkSimFrame f = still_frame(1.0 / 60.0);
+  f.teleport = 1;
+  f.transform.translation[0] = 1.0;
+  const double s = std::sqrt(0.5);
+  f.transform.rotation[1] = s;
+  f.transform.rotation[3] = s;
+  FramePlan plan = planner.plan(f);
+  REQUIRE(plan.steps.size() == 2);
+  CHECK(plan.steps[0].move_state);
+  CHECK(length(plan.steps[0].origin_shift) < 1e-15);
+  CHECK(plan.steps[0].teleport.y == Catch::Approx(s).margin(1e-15));
+  CHECK_FALSE(plan.steps[1].move_state);
+}
+
+TEST_CASE("planner: 10 km away plans the same simulation-space steps", "[reference][planner]") {
+  FramePlanner near(default_settings(), {0.01, 1.6, -0.02}, 0);
+  FramePlanner far(default_settings(), {0.01, 1.6, -0.02}, 0);
+  for (int i = 0; i < 30; ++i) {
+    TvkSimFrame f = still_frame(1.0 / 60.0);
+    const double angle = 0.3 * std::sin(0.2 * i);
+    f.transform.rotation[1] = std::sin(0.5 * angle);
+    f.transform.rotation[3] = std::cos(0.5 * angle);
+    f.transform.translation[2] = 0.01 * i;
+    TvkSimFrame g = f;
+    g.transform.translation[0] += 10000.0;
+    FramePlan a = near.plan(f), b = far.plan(g);
+    REQUIRE(a.steps.size() == b.steps.size());
+    for (size_t k = 0; k < a.steps.size(); ++k) {
+      CHECK(a.steps[k].origin_shift.x == b.steps[k].origin_shift.x);
+      CHECK(a.steps[k].origin_shift.z == b.steps[k].origin_shift.z);
+      CHECK(a.steps[k].skin[0].rows == b.steps[k].skin[0].rows);
+    }
+  }
+}
+
+TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][planner]") {
+  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  TvkSimFrame f = still_frame(1.0 / 60.0);
+  f.capsule_count = 1;
+  f.capsules[0] = TvkCapsule{{0, 0, 0}, 0.1f, {0, 1, 0}, 0.05f};
+  FramePlan plan = planner.plan(f);
+  GpuFrame gpu = to_gpu(plan);
+  REQUIRE(gpu.steps.size() == plan.steps.size());
+  CHECK(gpu.skin_stride == 4);
+  CHECK(gpu.skin.size() == plan.steps.size() * 4);
+  CHECK(gpu.steps[0].flags[0] == tressvk::sim::kStepReset);
+  CHECK(gpu.steps[1].flags[1] == 1u);
+  CHECK(gpu.steps[1].gravity[1] == Catch::Approx(-9.81 / (120.0 * 120.0)).epsilon(1e-6));
+  CHECK(gpu.steps[1].capsule[1][3] == 0.05f);
+  GroupStep g = to_group_step(default_params(), 1.0 / 120.0, 0.0);
+  CHECK(g.velocity_keep == Catch::Approx(std::exp(-0.08 * 0.5)));
+  CHECK(g.max_step == Catch::Approx(50.0 / 120.0));
+  CHECK(g.vsp_threshold == Catch::Approx(100.0 / (120.0 * 120.0)));
+  CHECK(g.local_stiffness == Catch::Approx(0.45));
+}
+
+TEST_CASE("planner: bad input is rejected with the field named", "[reference][planner]") {
+  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  TvkSimFrame f = still_frame(-1.0);
+  CHECK_THROWS_WITH(planner.plan(f), Catch::Matchers::ContainsSubstring("dt"));
+  f = still_frame(1.0 / 60.0);
+  f.transform.rotation[3] = 0.0;
+  CHECK_THROWS_WITH(planner.plan(f), Catch::Matchers::ContainsSubstring("transform.rotation"));
+  TvkSimParams p = default_params();
+  p.length_iterations = 0;
+  CHECK_THROWS_WITH(to_group_step(p, 1.0 / 120.0, 0.0), Catch::Matchers::ContainsSubstring("length_iterations"));
+}
