@@ -14,17 +14,23 @@ namespace {
 
 using namespace format;
 
+// A section to write: plain arrays are viewed in place (no copy of a 100 MB asset), built ones are owned.
 struct PendingSection {
   uint32_t id;
   uint32_t stride;
   uint64_t count;
-  std::vector<std::byte> bytes;
+  std::vector<std::byte> owned;
+  std::span<const std::byte> bytes;
 };
 
 template <typename T>
 PendingSection raw_section(uint32_t id, const std::vector<T>& v) {
-  PendingSection s{id, static_cast<uint32_t>(sizeof(T)), v.size(), std::vector<std::byte>(v.size() * sizeof(T))};
-  if (!v.empty()) std::memcpy(s.bytes.data(), v.data(), s.bytes.size());
+  return {id, static_cast<uint32_t>(sizeof(T)), v.size(), {}, std::as_bytes(std::span(v))};
+}
+
+PendingSection owned_section(uint32_t id, uint32_t stride, uint64_t count, std::vector<std::byte> bytes) {
+  PendingSection s{id, stride, count, std::move(bytes), {}};
+  s.bytes = s.owned;
   return s;
 }
 
@@ -62,19 +68,19 @@ PendingSection meta_section(const HairAsset& a) {
   w.put_string(a.bake_settings);
   auto bytes = w.take();
   const uint64_t n = bytes.size();
-  return {kMeta, 1, n, std::move(bytes)};
+  return owned_section(kMeta, 1, n, std::move(bytes));
 }
 
 PendingSection bone_section(const std::vector<BoneInfluences>& bones) {
-  PendingSection s{kBoneWeights, kBoneRecordSize, bones.size(), std::vector<std::byte>(bones.size() * kBoneRecordSize)};
-  std::span<std::byte> out(s.bytes);
+  std::vector<std::byte> bytes(bones.size() * kBoneRecordSize);
+  std::span<std::byte> out(bytes);
   for (size_t i = 0; i < bones.size(); ++i) {
     for (size_t k = 0; k < kMaxBoneInfluences; ++k) {
       store(out, i * kBoneRecordSize + 4 * k, bones[i].bone[k]);
       store(out, i * kBoneRecordSize + 16 + 4 * k, bones[i].weight[k]);
     }
   }
-  return s;
+  return owned_section(kBoneWeights, kBoneRecordSize, bones.size(), std::move(bytes));
 }
 
 }  // namespace
