@@ -1,0 +1,229 @@
+#include "bench.hpp"
+
+#include <tressvk/engine/buffer.hpp>
+#include <tressvk/engine/check.hpp>
+#include <tressvk/asset_io.hpp>
+#include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/scenes.hpp>
+#include <tressvk/reference/simulator.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+
+namespace tressvk::bench {
+namespace {
+
+void check_tvk(TvkResult r, TvkContext ctx, const char* what) {
+  if (r != TVK_SUCCESS)
+    throw std::runtime_error(std::string(what) + ": " + tressvk_result_string(r) + ": " + tressvk_last_error(ctx));
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
+}
+
+struct State {
+  std::vector<sim::Vec4> pos, prev, prevprev;
+};
+
+// Copies the instance's state into host-readable buffers (after the simulation's writes).
+State read_state(const engine::Device& dev, TvkInstance inst) {
+  TvkInstanceBuffers b{};
+  tressvk_get_instance_buffers(inst, &b);
+  engine::Buffer pos = engine::create_buffer(dev, b.positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                             engine::MemoryUsage::readback);
+  engine::Buffer prev = engine::create_buffer(dev, b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                              engine::MemoryUsage::readback);
+  engine::Buffer prevprev = engine::create_buffer(dev, b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                  engine::MemoryUsage::readback);
+  dev.run_commands([&](VkCommandBuffer cmd) {
+    VkMemoryBarrier2 barrier{};
+    barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+    VkDependencyInfo dep{};
+    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dep);
+    VkBufferCopy region{0, 0, b.positions_size};
+    vkCmdCopyBuffer(cmd, b.positions, pos.handle(), 1, &region);
+    region.size = b.previous_positions_size;
+    vkCmdCopyBuffer(cmd, b.previous_positions, prev.handle(), 1, &region);
+    vkCmdCopyBuffer(cmd, b.previous_previous_positions, prevprev.handle(), 1, &region);
+  });
+  State s;
+  s.pos = engine::read_buffer_as<sim::Vec4>(dev, pos, b.positions_size / sizeof(sim::Vec4));
+  s.prev = engine::read_buffer_as<sim::Vec4>(dev, prev, b.previous_positions_size / sizeof(sim::Vec4));
+  s.prevprev = engine::read_buffer_as<sim::Vec4>(dev, prevprev, b.previous_positions_size / sizeof(sim::Vec4));
+  return s;
+}
+
+}  // namespace
+
+CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& groom, const std::string& groom_name,
+                          const CompareOptions& opt) {
+  CompareResult out;
+  out.device = dev.description();
+  out.groom = groom_name;
+  out.scene = opt.scene;
+  out.frames = opt.frames;
+  out.guides = groom.guide_count();
+  out.follows = groom.follow_per_guide;
+  out.vertices_per_strand = groom.vertices_per_strand;
+  out.guide_vertices = uint64_t{out.guides} * out.vertices_per_strand;
+  out.rendered_vertices = out.guide_vertices * (1 + out.follows);
+
+  TvkContextCreateInfo ci = dev.plugin_context_info();
+  ci.frames_in_flight = 1;  // every frame is waited for (the state is read back)
+  ci.enable_timestamps = VK_TRUE;
+  TvkContext ctx = nullptr;
+  check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+  const std::vector<std::byte> bytes = asset::write(groom);
+  TvkAsset asset = nullptr;
+  dev.run_commands([&](VkCommandBuffer cmd) {
+    TvkAssetLoadInfo li{};
+    li.struct_size = sizeof(li);
+    li.data = bytes.data();
+    li.size = bytes.size();
+    li.upload_command_buffer = cmd;
+    check_tvk(tressvk_load_asset(ctx, &li, &asset), ctx, "tressvk_load_asset");
+  });
+  const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), opt.params);
+  TvkInstanceCreateInfo ic{};
+  ic.struct_size = sizeof(ic);
+  ic.asset = asset;
+  ic.settings = &opt.settings;
+  ic.params = &opt.params;
+  TvkInstance inst = nullptr;
+  check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+
+  reference::Simulator step_ref(groom, params, opt.settings);  // reloaded from the GPU state before each frame
+  reference::Simulator traj_ref(groom, params, opt.settings);  // free-running from the same initial state
+  const reference::SceneGeometry geometry = reference::scene_geometry(step_ref.rest());
+  const double median_length = step_ref.median_strand_length();
+  out.median_strand_length_m = median_length;
+
+  std::vector<double> gpu_ms, cpu_ms, step_errors;
+  std::map<std::string, std::vector<double>> pass_ms;
+  std::map<std::string, uint32_t> pass_dispatches;
+  double traj_sum_sq = 0, stretch_mean_sum = 0;
+  uint64_t traj_count = 0, steps_total = 0;
+  State state;  // GPU state after the previous frame, when it was read back
+  bool state_is_previous = false;
+  const uint32_t total = opt.warmup + opt.frames;
+  const uint32_t every = std::max(1u, opt.step_error_every);
+  const auto measured = [&](uint32_t f) { return f >= opt.warmup && f < total && (f - opt.warmup) % every == 0; };
+  for (uint32_t f = 0; f < total; ++f) {
+    const bool timed = f >= opt.warmup;
+    const TvkSimFrame frame = reference::scene_frame(opt.scene, f, geometry);
+    const bool step_error_now = measured(f) && state_is_previous;
+    if (step_error_now) step_ref.set_state(state.pos, state.prev, state.prevprev);
+    const auto t0 = std::chrono::steady_clock::now();
+    const reference::FramePlan plan = traj_ref.advance(frame);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (step_error_now)
+      step_ref.advance(frame);
+    else
+      step_ref.planner().plan(frame);  // keep its planner in step with the GPU's
+
+    check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+    check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+    if (timed && f > opt.warmup) {
+      // The previous frame is complete (frames_in_flight = 1): collect its pass timings.
+      TvkPassTiming timings[16];
+      const uint32_t n = tressvk_get_pass_timings(ctx, timings, 16);
+      double sum = 0;
+      for (uint32_t i = 0; i < n && i < 16; ++i) {
+        sum += timings[i].milliseconds;
+        pass_ms[timings[i].name].push_back(timings[i].milliseconds);
+        pass_dispatches[timings[i].name] = timings[i].dispatches;
+      }
+      if (n) gpu_ms.push_back(sum);
+    }
+    dev.run_commands([&](VkCommandBuffer cmd) {
+      TvkSimulateInfo si{};
+      si.struct_size = sizeof(si);
+      si.instance_count = 1;
+      si.instances = &inst;
+      check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+    });
+    steps_total += plan.steps.size();
+    if (timed) cpu_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+
+    state_is_previous = false;
+    if (!measured(f) && !measured(f + 1)) continue;
+    state = read_state(dev, inst);
+    state_is_previous = true;
+    if (!measured(f)) continue;
+    if (step_error_now) {
+      const auto e = reference::position_error(std::span<const sim::Vec4>(state.pos), step_ref.positions(), median_length);
+      step_errors.push_back(e.max_rel);
+      out.step_error_max_rel = std::max(out.step_error_max_rel, e.max_rel);
+    }
+    const auto te = reference::position_error(std::span<const sim::Vec4>(state.pos), traj_ref.positions(), median_length);
+    traj_sum_sq += te.rms_rel * te.rms_rel;
+    ++traj_count;
+    out.trajectory_error_max_rel = std::max(out.trajectory_error_max_rel, te.max_rel);
+    const auto st = reference::stretch(std::span<const sim::Vec4>(state.pos), step_ref.rest());
+    stretch_mean_sum += st.mean;
+    out.stretch_max = std::max(out.stretch_max, st.max);
+    const auto h = reference::health(std::span<const sim::Vec4>(state.pos), step_ref.rest());
+    out.nan_strands = std::max(out.nan_strands, h.nan_strands);
+    out.exploded_strands = std::max(out.exploded_strands, h.exploded_strands);
+  }
+  // Timings of the last frame.
+  tressvk_new_frame(ctx);
+  {
+    TvkPassTiming timings[16];
+    const uint32_t n = tressvk_get_pass_timings(ctx, timings, 16);
+    double sum = 0;
+    for (uint32_t i = 0; i < n && i < 16; ++i) {
+      sum += timings[i].milliseconds;
+      pass_ms[timings[i].name].push_back(timings[i].milliseconds);
+    }
+    if (n) gpu_ms.push_back(sum);
+  }
+  const uint32_t np = tressvk_get_recorded_passes(ctx, nullptr, 0);
+  std::vector<const char*> names(np);
+  tressvk_get_recorded_passes(ctx, names.data(), np);
+  out.passes.assign(names.begin(), names.end());
+  for (const std::string& p : out.passes) {
+    out.pass_times.push_back({p, median(pass_ms[p]), pass_dispatches[p]});
+    out.dispatches_per_frame += pass_dispatches[p];
+  }
+  TvkInstanceStats stats{};
+  tressvk_get_instance_stats(inst, &stats);
+  out.nonfinite_resets = stats.nonfinite_strand_resets;
+  out.gpu_ms_per_frame = median(gpu_ms);
+  out.gpu_ms_p99 = percentile(gpu_ms, 0.99);
+  out.cpu_reference_ms_per_frame = median(cpu_ms);
+  out.steps_per_frame = static_cast<double>(steps_total) / total;
+  double sum_sq = 0;
+  for (double e : step_errors) sum_sq += e * e;
+  out.step_error_rms_rel = step_errors.empty() ? 0 : std::sqrt(sum_sq / static_cast<double>(step_errors.size()));
+  out.stretch_mean = traj_count ? stretch_mean_sum / static_cast<double>(traj_count) : 0;
+  out.trajectory_error_rms_rel = traj_count ? std::sqrt(traj_sum_sq / static_cast<double>(traj_count)) : 0;
+
+  dev.wait_idle();
+  tressvk_destroy_instance(inst);
+  tressvk_destroy_asset(asset);
+  tressvk_destroy_context(ctx);
+  return out;
+}
+
+}  // namespace tressvk::bench

@@ -1,0 +1,154 @@
+// tressvk-bench: the speed of the GPU simulation next to its error against the double-precision reference, both
+// measured in the same run.
+//
+//   tressvk-bench compare --builtin curly --scene shake --frames 300 --json out.json
+//   tressvk-bench compare --asset mohawk.tvkhair --scene run
+#include "bench.hpp"
+
+#include <tressvk/asset_io.hpp>
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/engine/check.hpp>
+#include <tressvk/reference/scenes.hpp>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <clocale>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+using namespace tressvk;
+
+namespace {
+
+nlohmann::json to_json(const bench::CompareResult& r, const bench::CompareOptions& o) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& p : r.pass_times) passes.push_back({{"name", p.name}, {"median_ms", p.median_ms}, {"dispatches", p.dispatches}});
+  return {
+      {"device", r.device},
+      {"groom", r.groom},
+      {"scene", r.scene},
+      {"frames", r.frames},
+      {"guides", r.guides},
+      {"follow_per_guide", r.follows},
+      {"vertices_per_strand", r.vertices_per_strand},
+      {"guide_vertices", r.guide_vertices},
+      {"rendered_vertices", r.rendered_vertices},
+      {"median_strand_length_m", r.median_strand_length_m},
+      {"settings", {{"step_rate_hz", o.settings.time.step_rate}, {"max_steps_per_frame", o.settings.time.max_steps_per_frame},
+                    {"frame_dt_s", reference::kSceneFrameDt}, {"local_iterations", o.params.local_iterations},
+                    {"length_iterations", o.params.length_iterations}, {"local_stiffness", o.params.local_stiffness},
+                    {"global_stiffness", o.params.global_stiffness}, {"vsp_coefficient", o.params.vsp_coefficient}}},
+      {"steps_per_frame", r.steps_per_frame},
+      {"dispatches_per_frame", r.dispatches_per_frame},
+      {"gpu_ms_per_frame", r.gpu_ms_per_frame},
+      {"gpu_ms_per_frame_p99", r.gpu_ms_p99},
+      {"cpu_reference_ms_per_frame", r.cpu_reference_ms_per_frame},
+      {"step_error_max_rel", r.step_error_max_rel},
+      {"step_error_rms_rel", r.step_error_rms_rel},
+      {"trajectory_error_rms_rel", r.trajectory_error_rms_rel},
+      {"trajectory_error_max_rel", r.trajectory_error_max_rel},
+      {"stretch_mean", r.stretch_mean},
+      {"stretch_max", r.stretch_max},
+      {"nan_strands", r.nan_strands},
+      {"exploded_strands", r.exploded_strands},
+      {"nonfinite_resets", r.nonfinite_resets},
+      {"passes", r.passes},
+      {"pass_times", passes},
+  };
+}
+
+void print_table(const bench::CompareResult& r) {
+  std::printf("device      %s\n", r.device.c_str());
+  std::printf("groom       %s: %u guides x %u vertices, %u follows/guide (%llu guide vertices), median strand %.3f m\n",
+              r.groom.c_str(), r.guides, r.vertices_per_strand, r.follows,
+              static_cast<unsigned long long>(r.guide_vertices), r.median_strand_length_m);
+  std::printf("scene       %s, %u frames, %.2f steps/frame, %u dispatches/frame\n", r.scene.c_str(), r.frames,
+              r.steps_per_frame, r.dispatches_per_frame);
+  std::printf("speed       GPU %.4f ms/frame median (p99 %.4f); CPU double reference %.3f ms/frame (same frames)\n",
+              r.gpu_ms_per_frame, r.gpu_ms_p99, r.cpu_reference_ms_per_frame);
+  std::printf("error       step max %.3g, step rms %.3g, trajectory rms %.3g (max %.3g) of the median strand length\n",
+              r.step_error_max_rel, r.step_error_rms_rel, r.trajectory_error_rms_rel, r.trajectory_error_max_rel);
+  std::printf("health      stretch mean %.3g max %.3g; NaN strands %u, exploded %u, non-finite resets %u\n",
+              r.stretch_mean, r.stretch_max, r.nan_strands, r.exploded_strands, r.nonfinite_resets);
+  std::printf("%-32s %12s %10s\n", "pass", "median ms", "dispatches");
+  for (const auto& p : r.pass_times) std::printf("%-32s %12.4f %10u\n", p.name.c_str(), p.median_ms, p.dispatches);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setlocale(LC_ALL, "C");
+  CLI::App app{"tressvk-bench: GPU simulation speed against its error versus the double-precision reference"};
+  app.require_subcommand(1);
+  CLI::App* compare = app.add_subcommand("compare", "simulate a groom in a scene on the GPU and with the reference");
+  std::string asset_path, builtin, json_path, device;
+  bench::CompareOptions o;
+  baker::BuiltinGroomOptions groom_options;
+  auto* source = compare->add_option_group("groom");
+  source->add_option("--asset", asset_path, "a baked .tvkhair file");
+  source->add_option("--builtin", builtin, "a procedural groom: straight, curly or long128");
+  source->require_option(1);
+  compare->add_option("--scene", o.scene, "settle, shake, run, teleport, wind, hitch or far")->required();
+  compare->add_option("--frames", o.frames, "timed frames")->capture_default_str();
+  compare->add_option("--warmup", o.warmup, "frames run before timing")->capture_default_str();
+  compare->add_option("--step-error-every", o.step_error_every, "measure the step error every Nth frame")->capture_default_str();
+  compare->add_option("--guides", groom_options.guide_count, "guides of a built-in groom")->capture_default_str();
+  compare->add_option("--follows", groom_options.follow_per_guide, "follow hairs per guide of a built-in groom")->capture_default_str();
+  compare->add_option("--vertices", groom_options.vertices_per_strand, "vertices per strand of a built-in groom (0 = its default)");
+  compare->add_option("--step-rate", o.settings.time.step_rate, "simulation steps per second")->capture_default_str();
+  compare->add_option("--local-iterations", o.params.local_iterations)->capture_default_str();
+  compare->add_option("--length-iterations", o.params.length_iterations)->capture_default_str();
+  compare->add_option("--json", json_path, "write the results as JSON");
+  compare->add_option("--device", device, "device index or name substring (default: discrete GPU first)");
+  bool validation = false;
+  compare->add_flag("--validation", validation, "enable the Vulkan validation layer");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    const auto names = reference::scene_names();
+    if (std::find(names.begin(), names.end(), o.scene) == names.end()) {
+      std::fprintf(stderr, "tressvk-bench: unknown scene '%s'\n", o.scene.c_str());
+      return 1;
+    }
+    engine::DeviceOptions dopt;
+    dopt.app_name = "tressvk-bench";
+    dopt.device = device;
+    dopt.validation = validation;
+    engine::Device dev(dopt);
+    asset::HairAsset groom;
+    std::string groom_name;
+    if (!asset_path.empty()) {
+      asset::ReadResult read = asset::read_file(asset_path);
+      if (!read.ok()) {
+        std::fprintf(stderr, "tressvk-bench: %s\n", read.error.c_str());
+        return 2;
+      }
+      groom = std::move(read.asset);
+      groom_name = asset_path;
+    } else {
+      groom = baker::make_builtin_groom(builtin, groom_options);
+      groom_name = builtin;
+    }
+    const bench::CompareResult r = bench::run_compare(dev, groom, groom_name, o);
+    print_table(r);
+    if (!json_path.empty()) {
+      std::ofstream f(json_path);
+      f << to_json(r, o).dump(2) << "\n";
+      if (!f) {
+        std::fprintf(stderr, "tressvk-bench: cannot write %s\n", json_path.c_str());
+        return 3;
+      }
+    }
+    if (validation && dev.messages().count() > 0) {
+      std::fprintf(stderr, "tressvk-bench: %llu validation messages\n",
+                   static_cast<unsigned long long>(dev.messages().count()));
+      return 4;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tressvk-bench: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
