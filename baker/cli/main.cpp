@@ -254,9 +254,9 @@ int run(int argc, char** argv) {
   app.add_option("--scalp", s.scalp, "OBJ mesh: each strand's root is the end nearer its surface");
   app.add_option("--root-from", s.root_from, "Root end for OBJ strands: lower vertex index, or nearer the file's own faces")
       ->check(CLI::IsMember({"index", "faces"}))->capture_default_str();
-  app.add_option("--seed", s.bake.seed, "Seed for follow placement and the level-of-detail shuffle")->capture_default_str();
+  app.add_option("--seed", s.bake.seed, "Seed for follow placement and the level-of-detail order")->capture_default_str();
   app.add_flag("--skip-invalid", s.skip_invalid, "Drop branching or looping OBJ strands (reported) instead of failing");
-  app.add_flag("--keep-order", s.keep_order, "Keep the input strand order (no level-of-detail shuffle)");
+  app.add_flag("--keep-order", s.keep_order, "Keep the input strand order (no level-of-detail order)");
   app.add_option("--report", s.report, "Write a JSON report of the bake");
   app.add_flag("-v,--verbose", s.verbose, "Print input and output statistics");
   app.add_flag("-q,--quiet", s.quiet, "No warnings or progress");

@@ -90,6 +90,68 @@ void rest_frames(const std::vector<Vec3>& p, std::vector<Quat>& frames, std::vec
   for (size_t v = 0; v + 1 < n; ++v) edges[v] = rotate(conjugate(frames[v]), p[v + 1] - p[v]);
 }
 
+// Spreads n bits of v so that two zero bits separate each (for 3-D Morton codes).
+uint64_t spread_bits(uint64_t v) {
+  v &= 0x1FFFFF;
+  v = (v | v << 32) & 0x1F00000000FFFFull;
+  v = (v | v << 16) & 0x1F0000FF0000FFull;
+  v = (v | v << 8) & 0x100F00F00F00F00Full;
+  v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+
+uint64_t reverse_bits(uint64_t v, int bits) {
+  uint64_t r = 0;
+  for (int i = 0; i < bits; ++i, v >>= 1) r = (r << 1) | (v & 1u);
+  return r;
+}
+
+// Level-of-detail order: any prefix of the result must be an even thinning of the groom. A random shuffle is
+// even only on average (clumps and holes at small prefixes), so the guides are first sorted along a Z-order
+// curve through their root positions (neighbours on the curve are neighbours on the scalp), then taken in
+// bit-reversed curve order: a prefix of m guides takes about every (G/m)-th guide along the curve, which spreads
+// it over the whole scalp at every m. The seed picks a random starting point on the curve and a random
+// tie-break, so different seeds give different (equally even) orders.
+std::vector<uint32_t> lod_order(const std::vector<uint32_t>& kept, const RawGroom& groom, const std::vector<Vec3>& pts,
+                                uint64_t seed) {
+  const size_t g = kept.size();
+  if (g < 2) return kept;
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (uint32_t s : kept)
+    for (size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], pts[groom.strand_begin[s]][a]);
+      hi[a] = std::max(hi[a], pts[groom.strand_begin[s]][a]);
+    }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const double q = extent > 0 ? static_cast<double>(0x1FFFFF) / extent : 0.0;
+  Random rng(seed ^ 0x5F3759DFull);
+  struct Key {
+    uint64_t morton, tie;
+    uint32_t strand;
+  };
+  std::vector<Key> keys(g);
+  for (size_t i = 0; i < g; ++i) {
+    const Vec3& r = pts[groom.strand_begin[kept[i]]];
+    uint64_t m = 0;
+    for (size_t a = 0; a < 3; ++a) m |= spread_bits(static_cast<uint64_t>((r[a] - lo[a]) * q)) << a;
+    keys[i] = {m, rng.next(), kept[i]};
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
+    return x.morton != y.morton ? x.morton < y.morton : x.tie != y.tie ? x.tie < y.tie : x.strand < y.strand;
+  });
+  int bits = 0;
+  while ((uint64_t{1} << bits) < g) ++bits;
+  const uint64_t offset = rng.below(g);
+  std::vector<uint32_t> order;
+  order.reserve(g);
+  for (uint64_t j = 0; j < (uint64_t{1} << bits); ++j) {
+    const uint64_t k = reverse_bits(j, bits);
+    if (k < g) order.push_back(keys[(k + offset) % g].strand);
+  }
+  return order;
+}
+
 std::array<float, 4> to_float4(const Quat& q) {
   return {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z), static_cast<float>(q.w)};
 }
@@ -99,7 +161,7 @@ std::array<float, 4> to_float4(const Quat& q) {
 std::string bake_settings_json(const BakeOptions& o) {
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "{\"vertices\":%u,\"pin\":%u,\"follow\":%u,\"follow_radius\":%.9g,\"tip_separation\":%.9g,"
+                "{\"vertices\":%u,\"pin\":%u,\"follow\":%u,\"follow_radius_m\":%.9g,\"tip_separation\":%.9g,"
                 "\"seed\":%llu,\"units_to_metres\":%.9g,\"scale\":%.9g,\"up\":\"%s\",\"shuffle\":%s}",
                 o.vertices_per_strand, o.pin, o.follow_per_guide, o.follow_radius, double{o.tip_separation},
                 static_cast<unsigned long long>(o.seed), o.units_to_metres, o.scale, o.up == UpAxis::kZ ? "z" : "y",
@@ -184,10 +246,8 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
                                      " strands are degenerate or shorter than the length threshold)");
   if (kept.size() > (uint64_t{1} << 31) / n) throw InputError("too many strands for one asset");
 
-  // 5. Level-of-detail order: a seeded Fisher-Yates shuffle of the kept strands.
-  Random rng(o.seed ^ 0x5F3759DFull);
-  if (o.shuffle)
-    for (size_t i = kept.size(); i > 1; --i) std::swap(kept[i - 1], kept[rng.below(i)]);
+  // 5. Level-of-detail order (see lod_order).
+  if (o.shuffle) kept = lod_order(kept, groom, pts, o.seed);
 
   // 6. Resample (double), then the origin from the resampled bounds, rounded to a whole millimetre.
   const size_t g = kept.size();
@@ -223,7 +283,7 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
   a.follow_per_guide = o.follow_per_guide;
   a.tip_separation = o.tip_separation;
   for (size_t k = 0; k < 3; ++k) a.origin[k] = std::round((lo[k] + hi[k]) * 0.5 * 1000.0) / 1000.0 + 0.0;  // + 0.0: no negative zero
-  a.bake_settings = bake_settings_json(o);
+
 
   // 7. Per-vertex data, computed from the float32 positions the runtime will actually see.
   a.rest_positions.resize(g * n);
@@ -299,6 +359,11 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
       a.follow_offsets[k * o.follow_per_guide + f] = {0.0f, static_cast<float>(r * std::cos(t)),
                                                       static_cast<float>(r * std::sin(t)), 0.0f};
     }
+
+  // Stored with the radius actually used (metres), not the "automatic" marker.
+  BakeOptions settings = o;
+  settings.follow_radius = rep.follow_radius;
+  a.bake_settings = bake_settings_json(settings);
 
   rep.guides = g;
   rep.output_vertices = g * n;

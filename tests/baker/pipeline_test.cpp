@@ -197,7 +197,7 @@ TEST_CASE("Follow hairs: offsets in the root frame, perpendicular to the root ed
   }
 }
 
-TEST_CASE("LOD shuffle: seeded, a permutation, and prefixes thin the groom evenly", "[baker][pipeline]") {
+TEST_CASE("LOD order: seeded, deterministic, and prefixes thin the groom evenly by height", "[baker][pipeline]") {
   baker::BuiltinGroomOptions o;
   o.guide_count = 2048;
   const auto a = baker::make_builtin_groom("straight", o);
@@ -214,6 +214,28 @@ TEST_CASE("LOD shuffle: seeded, a permutation, and prefixes thin the groom evenl
     bands[std::min<size_t>(7, static_cast<size_t>(std::max(0.0, y) * 8))]++;
   }
   for (int c : bands) CHECK(std::abs(c - static_cast<int>(prefix) / 8) <= 4 * 6);  // sigma = sqrt(256*7/64) ~ 5.3
+}
+
+TEST_CASE("LOD order: every prefix covers the scalp without holes", "[baker][pipeline]") {
+  baker::BuiltinGroomOptions o;
+  o.guide_count = 2048;
+  const auto a = baker::make_builtin_groom("straight", o);
+  const uint32_t g = a.guide_count();
+  std::vector<V3> roots(g);
+  for (uint32_t i = 0; i < g; ++i) roots[i] = tvk_test::position(a, i, 0);
+  for (size_t m : {16, 64, 256, 1024}) {
+    // Coverage radius: the largest distance from any root to the nearest root of the prefix, relative to the
+    // ideal spacing sqrt(area / m) of m roots on the hemisphere. Measured for this order: 0.97-1.22 over
+    // prefixes 16..1024; a uniformly random shuffle measures 1.13-1.59 (holes), so 1.35 separates the two.
+    double worst = 0;
+    for (const auto& p : roots) {
+      double best = 1e9;
+      for (size_t j = 0; j < m; ++j) best = std::min(best, norm(sub(p, roots[j])));
+      worst = std::max(worst, best);
+    }
+    INFO("prefix " << m);
+    CHECK(worst / std::sqrt(2 * 3.14159265358979 * 0.01 / static_cast<double>(m)) < 1.35);
+  }
 }
 
 TEST_CASE("Built-in grooms", "[baker][procedural]") {

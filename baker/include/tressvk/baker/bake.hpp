@@ -3,8 +3,9 @@
 // Steps, in order: unit/axis conversion; merging of repeated vertices and segments shorter than a fraction of
 // the median segment length; dropping strands shorter than a fraction of the median strand length; arc-length
 // resampling to N vertices; origin at the bounds centre rounded to a millimetre; pins and inverse masses; rest
-// lengths and parallel-transport rest frames (asset.hpp); follow hairs as root-frame offsets; a seeded shuffle
-// for level of detail; bone weights and root UVs carried along.
+// lengths and parallel-transport rest frames (asset.hpp); follow hairs as root-frame offsets; a seeded
+// level-of-detail order (bit-reversed Z-order of the roots, so every prefix covers the scalp evenly); bone weights
+// and root UVs carried along.
 #pragma once
 
 #include <tressvk/asset.hpp>
@@ -23,11 +24,11 @@ struct BakeOptions {
   uint32_t follow_per_guide = 0;      // K
   double follow_radius = -1.0;        // metres; < 0: 5 % of the median strand length
   float tip_separation = 0.5f;        // dimensionless, stored in the asset
-  uint64_t seed = 1;                  // follow placement and the LOD shuffle
+  uint64_t seed = 1;                  // follow placement and the LOD order
   double units_to_metres = 1.0;       // m 1, cm 0.01, mm 0.001, in 0.0254
   double scale = 1.0;                 // extra uniform scale, applied after units
   UpAxis up = UpAxis::kY;
-  bool shuffle = true;                // false keeps the input strand order (debugging, round-trip tests)
+  bool shuffle = true;                // LOD order; false keeps the input strand order (debugging, round trips)
   // Scale-aware cleaning thresholds (fractions, never lengths in scene units).
   double merge_fraction = 1e-3;       // merge consecutive vertices closer than this x median segment length
   double min_length_fraction = 0.01;  // drop strands shorter than this x median strand length
@@ -56,7 +57,7 @@ struct BakeReport {
 // Throws InputError when nothing is left to bake (every strand dropped) or an option is out of range.
 asset::HairAsset bake(const RawGroom& groom, const BakeOptions& options, BakeReport* report = nullptr);
 
-// The bake options as the deterministic JSON stored in HairAsset::bake_settings.
+// The bake options as the deterministic JSON stored in HairAsset::bake_settings (follow_radius: metres).
 std::string bake_settings_json(const BakeOptions& options);
 
 }  // namespace tressvk::baker

@@ -1,5 +1,5 @@
 // Built-in procedural grooms for tests and benchmarks. They go through the same bake() pipeline as imported
-// hair (resampling, rest frames, follows, LOD shuffle), so they exercise exactly what real assets do.
+// hair (resampling, rest frames, follows, level-of-detail order), so they exercise exactly what real assets do.
 //
 // All are grown from the upper half (y > 0) of a head sphere of radius 0.1 m centred at the origin, roots on a
 // Fibonacci spiral (even coverage) with a seeded rotation:
