@@ -158,33 +158,52 @@ std::array<uint8_t, 4> Pixels::rgba8(uint32_t x, uint32_t y) const {
   return {data[i], data[i + 1], data[i + 2], data[i + 3]};
 }
 
-Pixels read_image(const Device& device, const Image& image, const ResourceState& current) {
+namespace {
+uint32_t readback_texel_size(const Image& image) {
   const uint32_t texel = format_texel_size(image.format());
   if (texel == 0 || is_depth_format(image.format()))
-    throw Error("read_image: colour format " + std::to_string(image.format()) + " is not supported for readback");
+    throw Error("image readback: colour format " + std::to_string(image.format()) + " is not supported");
+  return texel;
+}
+}  // namespace
+
+void cmd_readback_image(VkCommandBuffer cmd, const Image& image, const ResourceState& current, const Buffer& buffer) {
+  const VkDeviceSize bytes = VkDeviceSize{readback_texel_size(image)} * image.width() * image.height();
+  if (buffer.size() < bytes || !buffer.mapped())
+    throw Error("image readback: the buffer must be a mapped readback buffer of at least " + std::to_string(bytes) +
+                " bytes");
+  cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, current, state::kTransferSrc);
+  VkBufferImageCopy region{};
+  region.bufferRowLength = 0;  // tightly packed
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {image.width(), image.height(), 1};
+  vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(), 1, &region);
+  cmd_buffer_barrier(cmd, buffer.handle(), state::kTransferDst, state::kHostRead);
+}
+
+Pixels pixels_from_buffer(const Buffer& buffer, const Image& image) {
   Pixels pixels;
   pixels.width = image.width();
   pixels.height = image.height();
-  pixels.texel_size = texel;
-  const VkDeviceSize bytes = VkDeviceSize{texel} * image.width() * image.height();
+  pixels.texel_size = readback_texel_size(image);
+  const VkDeviceSize bytes = VkDeviceSize{pixels.texel_size} * image.width() * image.height();
+  if (buffer.size() < bytes || !buffer.mapped()) throw Error("pixels_from_buffer: buffer too small or not mapped");
+  vk_check(vmaInvalidateAllocation(buffer.allocator(), buffer.allocation(), 0, bytes), "vmaInvalidateAllocation");
+  pixels.data.resize(static_cast<size_t>(bytes));
+  std::memcpy(pixels.data.data(), buffer.mapped(), pixels.data.size());
+  return pixels;
+}
+
+Pixels read_image(const Device& device, const Image& image, const ResourceState& current) {
+  const VkDeviceSize bytes = VkDeviceSize{readback_texel_size(image)} * image.width() * image.height();
   Buffer staging = create_buffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback);
   device.run_commands([&](VkCommandBuffer cmd) {
-    cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, current, state::kTransferSrc);
-    VkBufferImageCopy region{};
-    region.bufferRowLength = 0;  // tightly packed
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {image.width(), image.height(), 1};
-    vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1, &region);
-    cmd_memory_barrier(cmd, state::kTransferDst, state::kHostRead);
+    cmd_readback_image(cmd, image, current, staging);
     // Back to the caller's layout; later users wait for the copy's read.
-    ResourceState back = current;
-    if (back.layout == VK_IMAGE_LAYOUT_UNDEFINED) back = state::kTransferSrc;
-    cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, state::kTransferSrc, back);
+    if (current.layout != VK_IMAGE_LAYOUT_UNDEFINED)
+      cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, state::kTransferSrc, current);
   });
-  vk_check(vmaInvalidateAllocation(staging.allocator(), staging.allocation(), 0, bytes), "vmaInvalidateAllocation");
-  pixels.data.resize(static_cast<size_t>(bytes));
-  std::memcpy(pixels.data.data(), staging.mapped(), pixels.data.size());
-  return pixels;
+  return pixels_from_buffer(staging, image);
 }
 
 }  // namespace tressvk::engine

@@ -6,6 +6,7 @@
 #include "plugin_host.hpp"
 
 #include <tressvk/engine/device.hpp>
+#include <tressvk/engine/frame_loop.hpp>
 #include <tressvk/engine/png.hpp>
 
 #include <algorithm>
@@ -55,25 +56,35 @@ int run(const tressvk::demo::Options& options) {
               options.validation ? " [validation + synchronization validation]" : "");
 
   {
-    demo::PluginContext plugin(device);
+    // Two frames in flight, for the plugin context and the frame loop: the GPU renders frame n+1 while the CPU
+    // writes the PNG of frame n.
+    constexpr uint32_t kFramesInFlight = 2;
+    demo::PluginContext plugin(device, kFramesInFlight);
     TvkMemoryUsage usage{};
     if (tressvk_get_memory_usage(plugin.get(), &usage) == TVK_SUCCESS)
       std::printf("TressVK context created (%u allocation(s), %llu bytes)\n", usage.allocation_count,
                   static_cast<unsigned long long>(usage.device_bytes));
 
-    demo::DemoRenderer renderer(device, options.width, options.height);
+    demo::DemoRenderer renderer(device, options.width, options.height, kFramesInFlight);
     const std::filesystem::path out_dir = std::filesystem::absolute(options.out_dir);
     std::vector<double> gpu_ms;
+    engine::FrameLoop loop(device, kFramesInFlight, demo::DemoRenderer::kTimestampCount,
+                           [&](const engine::FrameLoop::Frame& done) {
+                             demo::FrameResult frame = renderer.result(done);
+                             const auto index = static_cast<uint32_t>(done.number);
+                             engine::write_png(out_dir / frame_name(index), frame.pixels);
+                             if (frame.gpu_ms) {
+                               std::printf("frame %u: GPU %.3f ms\n", index, *frame.gpu_ms);
+                               gpu_ms.push_back(*frame.gpu_ms);
+                             } else {
+                               std::printf("frame %u: GPU time unavailable (no timestamps on this queue)\n", index);
+                             }
+                           });
     for (uint32_t f = 0; f < options.frames; ++f) {
-      demo::FrameResult frame = renderer.render(f);
-      engine::write_png(out_dir / frame_name(f), frame.pixels);
-      if (frame.gpu_ms) {
-        std::printf("frame %u: GPU %.3f ms\n", f, *frame.gpu_ms);
-        gpu_ms.push_back(*frame.gpu_ms);
-      } else {
-        std::printf("frame %u: GPU time unavailable (no timestamps on this queue)\n", f);
-      }
+      renderer.record(loop.begin());
+      loop.end();
     }
+    loop.finish();
     if (gpu_ms.size() > 1) {
       // The first frame pays for shader compilation (lavapipe JITs on first use), so the median says more.
       std::sort(gpu_ms.begin(), gpu_ms.end());

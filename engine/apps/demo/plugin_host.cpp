@@ -13,12 +13,12 @@ void on_plugin_message(TvkMessageSeverity severity, const char* message, void* /
 }
 }  // namespace
 
-PluginContext::PluginContext(engine::Device& device) : device_(device) {
+PluginContext::PluginContext(engine::Device& device, uint32_t frames_in_flight) : device_(device) {
   if (TVK_CHECK_VERSION() != TVK_SUCCESS)
     throw engine::Error("libtressvk " + std::to_string(tressvk_version()) + " does not match the header " +
                         std::to_string(TVK_VERSION_NUM));
   TvkContextCreateInfo info = device.plugin_context_info();
-  info.frames_in_flight = 2;
+  info.frames_in_flight = frames_in_flight;
   info.message_callback = on_plugin_message;
   const TvkResult r = tressvk_create_context(&info, &context_);
   if (r != TVK_SUCCESS)

@@ -11,7 +11,7 @@ namespace tressvk::demo {
 // to be idle first, as tressvk_destroy_context requires.
 class PluginContext {
  public:
-  explicit PluginContext(engine::Device& device);
+  PluginContext(engine::Device& device, uint32_t frames_in_flight);
   ~PluginContext();
   PluginContext(const PluginContext&) = delete;
   PluginContext& operator=(const PluginContext&) = delete;

@@ -91,4 +91,12 @@ struct Pixels {
 // Copies a colour image in state `current` to the CPU (waits). The image is left in `current`'s layout.
 Pixels read_image(const Device& device, const Image& image, const ResourceState& current);
 
+class Buffer;
+// The recording half of a readback, for frames in flight: transitions the image from `current` to
+// kTransferSrc (where it stays), copies it tightly packed into `buffer` (a MemoryUsage::readback buffer of at
+// least texel size * width * height bytes) and makes the copy visible to the host. After the submission has
+// finished, pixels_from_buffer() gives the pixels.
+void cmd_readback_image(VkCommandBuffer cmd, const Image& image, const ResourceState& current, const Buffer& buffer);
+Pixels pixels_from_buffer(const Buffer& buffer, const Image& image);
+
 }  // namespace tressvk::engine
