@@ -17,9 +17,10 @@ endif()
 
 if(TRESSVK_PORTABLE)
   # A Debian 12 binary that runs on other glibc >= 2.34 systems: static libstdc++ (not libgcc, which would pull
-  # in a GLIBC_2.35 symbol) and a local arc4random (cmake/portable/arc4random.c) for libstdc++'s random device.
+  # in a GLIBC_2.35 symbol) and a local arc4random (cmake/portable/arc4random.c), which libstdc++.a's random.o
+  # references (glibc has it only from 2.36). Build-tree only: nothing installed depends on it.
   add_link_options(-static-libstdc++)
   add_library(tressvk_portable_arc4random OBJECT "${CMAKE_CURRENT_LIST_DIR}/portable/arc4random.c")
   set_target_properties(tressvk_portable_arc4random PROPERTIES POSITION_INDEPENDENT_CODE ON C_VISIBILITY_PRESET hidden)
-  link_libraries(tressvk_portable_arc4random)
+  link_libraries($<BUILD_INTERFACE:tressvk_portable_arc4random>)
 endif()
