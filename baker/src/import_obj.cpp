@@ -35,6 +35,7 @@ class ObjParser {
   void parse() {
     const char* p = text_.data();
     const char* end = p + text_.size();
+    if (text_.size() >= 3 && text_.substr(0, 3) == "\xEF\xBB\xBF") p += 3;  // UTF-8 byte order mark
     uint64_t line = 1;
     while (p < end) {
       const char* eol = p;
@@ -80,7 +81,7 @@ class ObjParser {
     if (p < e && *p == '+') ++p;  // from_chars rejects a leading '+', which some exporters write
     double v = 0;
     auto [ptr, ec] = std::from_chars(p, e, v);
-    if (ec != std::errc() || (ptr < e && !is_space(*ptr)))
+    if (ec != std::errc() || (ptr < e && !is_space(*ptr) && *ptr != '#'))
       fail(line, std::string("cannot parse ") + field + " '" + token(start, e) + "' as a number");
     if (!std::isfinite(v)) fail(line, std::string(field) + " is not finite ('" + token(start, e) + "')");
     p = ptr;
@@ -97,14 +98,14 @@ class ObjParser {
   // kNone at the end of the line. Positive indices are checked against the final vertex count later.
   uint32_t parse_index(const char*& p, const char* e, uint64_t line) {
     p = skip_space(p, e);
-    if (p >= e) return kNone;
+    if (p >= e || *p == '#') return kNone;  // end of line or a trailing comment
     const char* start = p;
     long long i = 0;
     auto [ptr, ec] = std::from_chars(p, e, i);
     if (ec != std::errc()) fail(line, "cannot parse vertex index '" + token(start, e) + "'");
     p = ptr;
     while (p < e && (*p == '/' || (*p >= '0' && *p <= '9') || *p == '-')) ++p;  // texture/normal parts
-    if (p < e && !is_space(*p)) fail(line, "cannot parse vertex index '" + token(start, e) + "'");
+    if (p < e && !is_space(*p) && *p != '#') fail(line, "cannot parse vertex index '" + token(start, e) + "'");
     if (i == 0) fail(line, "vertex index 0 (OBJ indices start at 1)");
     if (i < 0) {
       const long long resolved = static_cast<long long>(verts.size()) + i;

@@ -71,6 +71,10 @@ TEST_CASE("OBJ: CRLF, comments, normals, texture coordinates and other noise", "
   CHECK(g.ignored_records >= 5);
 }
 
+TEST_CASE("OBJ: a UTF-8 byte order mark and trailing comments", "[baker][obj]") {
+  check_two_strands(import("\xEF\xBB\xBF" + kVerts + "l 1 2 3 # first strand\nl 4 5 6# second\n"));
+}
+
 TEST_CASE("OBJ: faces of other objects are not hair; o/g names become groups", "[baker][obj]") {
   const std::string text = kVerts + "v 5 5 5\nv 6 5 5\nv 5 6 5\n" +
                            "o head\nf 7 8 9\ng fringe\nl 1 2 3\ng crown\nl 4 5 6\n";
