@@ -258,6 +258,8 @@ void Device::create_device() {
   };
   need(VK_TRUE, have13.synchronization2, "synchronization2");
   need(VK_TRUE, have13.dynamicRendering, "dynamicRendering");
+  // The engine's depth barriers use DEPTH_ATTACHMENT_OPTIMAL / DEPTH_READ_ONLY_OPTIMAL on depth-only images.
+  need(VK_TRUE, have12.separateDepthStencilLayouts, "separateDepthStencilLayouts");
   need(req.synchronization2, have13.synchronization2, "synchronization2 (plugin)");
   need(req.dynamic_rendering, have13.dynamicRendering, "dynamicRendering (plugin)");
 
@@ -301,6 +303,7 @@ void Device::create_device() {
   VkPhysicalDeviceVulkan12Features en12{};
   en12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
   en12.hostQueryReset = have12.hostQueryReset;
+  en12.separateDepthStencilLayouts = VK_TRUE;
   en12.pNext = &en13;
   VkPhysicalDeviceFeatures2 en{};
   en.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;

@@ -3,6 +3,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace tressvk::engine {
 
@@ -151,6 +152,103 @@ void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, con
 }
 
 void cmd_end_rendering(VkCommandBuffer cmd) { vkCmdEndRendering(cmd); }
+
+RenderPassTarget::RenderPassTarget(const Device& device, const OffscreenTarget& target)
+    : extent_(target.extent()), has_color_(static_cast<bool>(target.color)), has_depth_(static_cast<bool>(target.depth)) {
+  std::vector<VkAttachmentDescription> attachments;
+  std::vector<VkImageView> views;
+  VkAttachmentReference color_ref{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkAttachmentReference depth_ref{VK_ATTACHMENT_UNUSED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  auto add = [&](const Image& image, VkImageLayout layout, VkAttachmentReference& ref) {
+    VkAttachmentDescription a{};
+    a.format = image.format();
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    a.finalLayout = layout;
+    ref.attachment = static_cast<uint32_t>(attachments.size());
+    attachments.push_back(a);
+    views.push_back(image.view());
+  };
+  if (target.color) add(target.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, color_ref);
+  if (target.depth) add(target.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, depth_ref);
+
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = target.color ? 1 : 0;
+  subpass.pColorAttachments = target.color ? &color_ref : nullptr;
+  subpass.pDepthStencilAttachment = target.depth ? &depth_ref : nullptr;
+
+  // Conservative external dependencies: a host pass is a boundary, so it waits for everything before it and
+  // makes its attachment writes available to everything after it.
+  const VkPipelineStageFlags attachment_stages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                                 VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                                 VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  const VkAccessFlags attachment_access =
+      VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkSubpassDependency deps[2]{};
+  deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  deps[0].dstSubpass = 0;
+  deps[0].srcStageMask = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
+  deps[0].srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  deps[0].dstStageMask = attachment_stages;
+  deps[0].dstAccessMask = attachment_access;
+  deps[1].srcSubpass = 0;
+  deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  deps[1].srcStageMask = attachment_stages;
+  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  deps[1].dstStageMask = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
+  deps[1].dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+
+  VkRenderPassCreateInfo rpci{};
+  rpci.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+  rpci.attachmentCount = static_cast<uint32_t>(attachments.size());
+  rpci.pAttachments = attachments.data();
+  rpci.subpassCount = 1;
+  rpci.pSubpasses = &subpass;
+  rpci.dependencyCount = 2;
+  rpci.pDependencies = deps;
+  VkRenderPass render_pass = VK_NULL_HANDLE;
+  vk_check(vkCreateRenderPass(device.device(), &rpci, nullptr, &render_pass), "vkCreateRenderPass");
+  render_pass_ = DeviceHandle<VkRenderPass>(device.device(), render_pass, vkDestroyRenderPass);
+
+  VkFramebufferCreateInfo fci{};
+  fci.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+  fci.renderPass = render_pass;
+  fci.attachmentCount = static_cast<uint32_t>(views.size());
+  fci.pAttachments = views.data();
+  fci.width = extent_.width;
+  fci.height = extent_.height;
+  fci.layers = 1;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  vk_check(vkCreateFramebuffer(device.device(), &fci, nullptr, &framebuffer), "vkCreateFramebuffer");
+  framebuffer_ = DeviceHandle<VkFramebuffer>(device.device(), framebuffer, vkDestroyFramebuffer);
+}
+
+void cmd_begin_render_pass(VkCommandBuffer cmd, const RenderPassTarget& target, const ClearValues& clear) {
+  VkClearValue values[2]{};
+  uint32_t n = 0;
+  if (target.has_color()) {
+    for (int i = 0; i < 4; ++i) values[n].color.float32[i] = clear.color[static_cast<size_t>(i)];
+    ++n;
+  }
+  if (target.has_depth()) values[n++].depthStencil = {clear.depth, 0};
+  VkRenderPassBeginInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+  info.renderPass = target.render_pass();
+  info.framebuffer = target.framebuffer();
+  info.renderArea = {{0, 0}, target.extent()};
+  info.clearValueCount = n;
+  info.pClearValues = values;
+  vkCmdBeginRenderPass(cmd, &info, VK_SUBPASS_CONTENTS_INLINE);
+  cmd_set_viewport_scissor(cmd, target.extent());
+}
+
+void cmd_end_render_pass(VkCommandBuffer cmd) { vkCmdEndRenderPass(cmd); }
 
 std::array<uint8_t, 4> Pixels::rgba8(uint32_t x, uint32_t y) const {
   if (x >= width || y >= height || texel_size != 4) throw Error("Pixels::rgba8: out of range or not 8-bit RGBA");

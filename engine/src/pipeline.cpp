@@ -167,7 +167,12 @@ Pipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDe
   VkGraphicsPipelineCreateInfo info{};
 
   info.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-  info.pNext = &rendering;
+  if (desc.render_pass) {
+    info.renderPass = desc.render_pass;
+    info.subpass = desc.subpass;
+  } else {
+    info.pNext = &rendering;
+  }
   info.stageCount = has_fragment ? 2 : 1;
   info.pStages = stage_info;
   info.pVertexInputState = &vertex_input;

@@ -5,6 +5,7 @@
 #include <tressvk/test/vulkan.hpp>
 
 #include <catch2/catch_test_macros.hpp>
+#include <catch2/generators/catch_generators.hpp>
 
 #include <array>
 #include <cstdlib>
@@ -36,10 +37,15 @@ std::array<uint32_t, 2> pixel_at(float x, float y, uint32_t size) {
 }  // namespace
 
 TEST_CASE("offscreen clear + depth-tested draws read back the expected pixels", "[vulkan][engine]") {
+  // Both ways a host renders: dynamic rendering and a classic render pass (the plugin must draw into both).
+  const bool use_render_pass = GENERATE(false, true);
+  INFO((use_render_pass ? "VkRenderPass" : "dynamic rendering"));
   constexpr uint32_t kSize = 64;
   constexpr VkFormat kColor = VK_FORMAT_R8G8B8A8_UNORM;  // UNORM: clear values map to bytes exactly
   engine::Device& dev = test::device();
   engine::OffscreenTarget target = engine::create_offscreen_target(dev, kSize, kSize, kColor);
+  engine::RenderPassTarget pass;
+  if (use_render_pass) pass = engine::RenderPassTarget(dev, target);
 
   engine::GraphicsPipelineDesc desc;
   desc.vertex_spirv = engine::shaders::triangle_vert();
@@ -48,6 +54,7 @@ TEST_CASE("offscreen clear + depth-tested draws read back the expected pixels", 
   desc.color_formats = {kColor};
   desc.depth_format = VK_FORMAT_D32_SFLOAT;
   desc.depth_compare = VK_COMPARE_OP_LESS;
+  desc.render_pass = pass.render_pass();
   const engine::Pipeline pipeline = engine::create_graphics_pipeline(dev, desc);
 
   // Green in front (z 0.25), drawn first; red behind (z 0.75), drawn second and overlapping the green one
@@ -60,16 +67,24 @@ TEST_CASE("offscreen clear + depth-tested draws read back the expected pixels", 
   clear.color = {0.2f, 0.4f, 0.6f, 1.0f};
 
   test::run_commands([&](VkCommandBuffer cmd) {
-    engine::cmd_begin_rendering(cmd, target, clear);
+    if (use_render_pass)
+      engine::cmd_begin_render_pass(cmd, pass, clear);
+    else
+      engine::cmd_begin_rendering(cmd, target, clear);
     pipeline.cmd_bind(cmd);
     pipeline.cmd_push(cmd, flat_triangle(green_xy, 0.25f, green));
     vkCmdDraw(cmd, 3, 1, 0, 0);
     pipeline.cmd_push(cmd, flat_triangle(red_xy, 0.75f, red));
     vkCmdDraw(cmd, 3, 1, 0, 0);
-    engine::cmd_end_rendering(cmd);
+    if (use_render_pass)
+      engine::cmd_end_render_pass(cmd);
+    else
+      engine::cmd_end_rendering(cmd);
   });
   const engine::Pixels pixels = engine::read_image(dev, target.color, engine::state::kColorAttachment);
-  engine::write_png(test::output_dir() / "engine_clear_draw.png", pixels);
+  engine::write_png(test::output_dir() / (use_render_pass ? "engine_clear_draw_render_pass.png"
+                                                          : "engine_clear_draw_dynamic.png"),
+                    pixels);
 
   const Rgba kClear{51, 102, 153, 255};  // round(0.2*255), round(0.4*255), round(0.6*255)
   const Rgba kGreen{0, 255, 0, 255};

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <tressvk/engine/device.hpp>
+#include <tressvk/engine/handle.hpp>
 #include <tressvk/engine/sync.hpp>
 
 #include <array>
@@ -76,6 +77,32 @@ void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, con
                          const ResourceState& previous_color = state::kUndefined,
                          const ResourceState& previous_depth = state::kUndefined);
 void cmd_end_rendering(VkCommandBuffer cmd);
+
+// The same target through a classic VkRenderPass + VkFramebuffer (one subpass), for hosts that do not use
+// dynamic rendering; the plugin must draw into both. The pass clears both attachments (their old contents are
+// discarded), waits for all earlier commands, and leaves colour in COLOR_ATTACHMENT_OPTIMAL (state
+// kColorAttachment) and depth in DEPTH_STENCIL_ATTACHMENT_OPTIMAL, with its writes made available to all later
+// commands.
+class RenderPassTarget {
+ public:
+  RenderPassTarget() = default;
+  RenderPassTarget(const Device& device, const OffscreenTarget& target);
+  VkRenderPass render_pass() const { return render_pass_.get(); }
+  VkFramebuffer framebuffer() const { return framebuffer_.get(); }
+  VkExtent2D extent() const { return extent_; }
+  bool has_color() const { return has_color_; }
+  bool has_depth() const { return has_depth_; }
+
+ private:
+  DeviceHandle<VkRenderPass> render_pass_;
+  DeviceHandle<VkFramebuffer> framebuffer_;
+  VkExtent2D extent_{};
+  bool has_color_ = false;
+  bool has_depth_ = false;
+};
+// Begins the render pass with clears and sets a full-target viewport and scissor.
+void cmd_begin_render_pass(VkCommandBuffer cmd, const RenderPassTarget& target, const ClearValues& clear);
+void cmd_end_render_pass(VkCommandBuffer cmd);
 void cmd_set_viewport_scissor(VkCommandBuffer cmd, VkExtent2D extent);
 
 // Tightly packed pixels read back from a colour image (row-major, top row first).

@@ -61,8 +61,12 @@ struct GraphicsPipelineDesc {
   std::span<const uint32_t> fragment_spirv;  // may be empty for depth-only passes (shadow maps)
   std::vector<SpecConstant> spec_constants;   // given to both stages
   PipelineLayoutDesc layout;
-  std::vector<VkFormat> color_formats;        // dynamic rendering attachment formats
+  std::vector<VkFormat> color_formats;        // attachment formats (one blend state per colour attachment)
   VkFormat depth_format = VK_FORMAT_UNDEFINED;
+  // VK_NULL_HANDLE: built for dynamic rendering with the formats above. Otherwise: for this render pass and
+  // subpass (the formats must still describe its attachments).
+  VkRenderPass render_pass = VK_NULL_HANDLE;
+  uint32_t subpass = 0;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   VkCullModeFlags cull_mode = VK_CULL_MODE_NONE;
