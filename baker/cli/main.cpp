@@ -188,8 +188,7 @@ int run_bake(CliState& s) {
   const auto problems = asset::validate(a);
   if (!problems.empty()) throw std::runtime_error("internal error: the baked asset is inconsistent: " + problems.front());
   asset::FileInfo info;
-  const auto bytes = asset::write(a, &info);
-  const auto err = asset::write_file(s.output, bytes);
+  const auto err = asset::write_file(s.output, a, &info);
   if (!err.empty()) throw baker::IoError(err);
 
   if (!s.quiet) {
@@ -218,7 +217,7 @@ int run_bake(CliState& s) {
               << rep.merged_vertices << " merged, " << rep.dropped_short << " strands dropped as too short, "
               << rep.skipped_invalid << " skipped as invalid)\n"
               << "output: " << rep.guides << " guides x " << s.bake.vertices_per_strand << " vertices, "
-              << s.bake.follow_per_guide << " follows per guide, " << bytes.size() << " bytes\n"
+              << s.bake.follow_per_guide << " follows per guide, " << info.file_size << " bytes\n"
               << "resampling error: max " << rep.max_resample_error << " m (" << 100.0 * rep.max_relative_resample_error
               << " % of its strand), rms " << rep.rms_resample_error << " m\n";
     for (const auto& sec : info.sections) std::cout << "section " << sec.name << ": " << sec.size << " bytes\n";

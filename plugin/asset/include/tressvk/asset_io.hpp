@@ -72,6 +72,8 @@ std::vector<std::byte> write(const HairAsset& asset, FileInfo* info_out = nullpt
 // Writes to a temporary file beside `path` and renames it into place, so a failure never leaves a partial file.
 // Returns an empty string on success, otherwise an I/O error message naming the file.
 std::string write_file(const std::filesystem::path& path, std::span<const std::byte> bytes);
+// The same for an asset, streamed section by section (the same bytes as write(), without a copy in memory).
+std::string write_file(const std::filesystem::path& path, const HairAsset& asset, FileInfo* info_out = nullptr);
 
 // Checks that an in-memory asset is whole and self-consistent: counts, finite values, unit quaternions, rest
 // lengths and rest edges that match the positions (to float32 precision relative to the segment length), group
