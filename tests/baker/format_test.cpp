@@ -142,6 +142,18 @@ TEST_CASE("Format: inconsistent contents are refused even with good checksums", 
   CHECK_THAT(asset::read(asset::write(c)).error, ContainsSubstring("quaternion"));
 }
 
+TEST_CASE("Format: streamed write_file gives the same bytes as write", "[baker][format]") {
+  const auto a = small_asset(true);
+  const auto path = tvk_test::temp_dir() / "streamed.tvkhair";
+  asset::FileInfo info;
+  REQUIRE(asset::write_file(path, a, &info).empty());
+  const auto bytes = asset::write(a);
+  CHECK(tvk_test::read_bytes(path) == bytes);
+  CHECK(info.file_size == bytes.size());
+  CHECK(info.sections.size() == asset::inspect(bytes).info.sections.size());
+  CHECK_FALSE(asset::write_file(tvk_test::temp_dir() / "no_dir" / "x.tvkhair", a).empty());
+}
+
 TEST_CASE("Format: read_file reports I/O errors separately", "[baker][format]") {
   const auto r = asset::read_file(tvk_test::temp_dir() / "does_not_exist.tvkhair");
   CHECK(r.status == asset::ReadStatus::kIoError);
