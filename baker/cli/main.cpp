@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <clocale>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <unistd.h>
@@ -43,10 +44,24 @@ std::string hex32(uint32_t v) {
   return buf;
 }
 
-bool progress_wanted(const CliState& s) { return !s.quiet && ::isatty(2); }
+// Progress lines only help where a person watches a bake that takes a while: stderr is a terminal and the
+// inputs are large (16 MB of input takes about a quarter of a second).
+constexpr uintmax_t kProgressMinInputBytes = 16u << 20;
+
+bool progress_wanted(const CliState& s) {
+  if (s.quiet || !::isatty(2)) return false;
+  uintmax_t total = 0;
+  for (const auto& in : s.inputs) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(in, ec);
+    if (!ec) total += size;
+  }
+  return total >= kProgressMinInputBytes;
+}
 
 void progress(const CliState& s, const std::string& what) {
-  if (progress_wanted(s)) std::cerr << "tressvk-bake: " << what << "...\n";
+  static const bool wanted = progress_wanted(s);
+  if (wanted) std::cerr << "tressvk-bake: " << what << "...\n";
 }
 
 ordered_json sections_json(const asset::FileInfo& info) {
