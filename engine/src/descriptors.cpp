@@ -43,6 +43,29 @@ VkDescriptorSet DescriptorPool::allocate(VkDescriptorSetLayout layout) const {
   return set;
 }
 
+DeviceHandle<VkSampler> create_sampler(const Device& device, const SamplerDesc& desc) {
+  VkSamplerCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
+  info.magFilter = desc.filter;
+  info.minFilter = desc.filter;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.addressModeU = desc.address;
+  info.addressModeV = desc.address;
+  info.addressModeW = desc.address;
+  info.borderColor = desc.border;
+  info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
+  info.compareOp = desc.compare_op;
+  info.maxLod = VK_LOD_CLAMP_NONE;
+  const float limit = device.properties().limits.maxSamplerAnisotropy;
+  if (desc.max_anisotropy > 1.0f && device.sampler_anisotropy()) {
+    info.anisotropyEnable = VK_TRUE;
+    info.maxAnisotropy = desc.max_anisotropy < limit ? desc.max_anisotropy : limit;
+  }
+  VkSampler sampler = VK_NULL_HANDLE;
+  vk_check(vkCreateSampler(device.device(), &info, nullptr, &sampler), "vkCreateSampler");
+  return DeviceHandle<VkSampler>(device.device(), sampler, vkDestroySampler);
+}
+
 void write_buffer_descriptor(const Device& device, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                              VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
   const VkDescriptorBufferInfo buffer_info{buffer, offset, range};

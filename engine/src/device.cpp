@@ -311,6 +311,8 @@ void Device::create_device() {
   en.features.depthClamp = have.features.depthClamp;
   en.features.samplerAnisotropy = have.features.samplerAnisotropy;
   en.features.fillModeNonSolid = have.features.fillModeNonSolid;
+  sampler_anisotropy_ = en.features.samplerAnisotropy == VK_TRUE;
+  depth_clamp_ = en.features.depthClamp == VK_TRUE;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{};

@@ -30,6 +30,16 @@ class DescriptorPool {
   DeviceHandle<VkDescriptorPool> pool_;
 };
 
+struct SamplerDesc {
+  VkFilter filter = VK_FILTER_LINEAR;
+  VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;  // with CLAMP_TO_BORDER: "lit" outside a shadow map
+  bool compare = false;  // depth comparison (shadow maps: sampler2DShadow), with compare_op
+  VkCompareOp compare_op = VK_COMPARE_OP_LESS_OR_EQUAL;
+  float max_anisotropy = 1.0f;  // > 1 only when the device enabled samplerAnisotropy; clamped to its limit
+};
+DeviceHandle<VkSampler> create_sampler(const Device& device, const SamplerDesc& desc = {});
+
 void write_buffer_descriptor(const Device& device, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                              VkBuffer buffer, VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE);
 void write_image_descriptor(const Device& device, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,

@@ -67,6 +67,10 @@ class Device {
   // leak reports arrive.
   std::shared_ptr<MessageLog> message_log() const { return log_; }
 
+  // Optional features the engine enabled because the device has them.
+  bool sampler_anisotropy() const { return sampler_anisotropy_; }
+  bool depth_clamp() const { return depth_clamp_; }
+
   // Timestamps: supported when the queue family has timestampValidBits > 0.
   bool timestamps_supported() const { return timestamp_valid_bits_ > 0; }
   uint32_t timestamp_valid_bits() const { return timestamp_valid_bits_; }
@@ -101,6 +105,8 @@ class Device {
   VkDevice device_ = VK_NULL_HANDLE;
   uint32_t queue_family_ = 0;
   uint32_t timestamp_valid_bits_ = 0;
+  bool sampler_anisotropy_ = false;
+  bool depth_clamp_ = false;
   VkQueue queue_ = VK_NULL_HANDLE;
   VmaAllocator allocator_ = VK_NULL_HANDLE;
   VkCommandPool command_pool_ = VK_NULL_HANDLE;
