@@ -14,6 +14,14 @@
 //   the message text. Messages outside a test case (device teardown) make the test process exit non-zero.
 // - Negative tests wrap the wrong code in `auto expect = expect_validation_messages(1, "SYNC-HAZARD");`.
 // - If the validation layer is not installed, device() throws a clear error (the test fails; CI installs it).
+//
+// What synchronization validation (VVL 1.3.239, the bookworm layer) can and cannot see, measured here:
+// - It reports hazards between commands of ONE command buffer (e.g. vkCmdFillBuffer then a dispatch writing the
+//   same buffer with no barrier: SYNC-HAZARD-WRITE-AFTER-WRITE at record time).
+// - It does NOT report hazards between command buffers of different submissions (the same fill and copy split
+//   over two submits, with or without a fence wait between them, gave no message), nor a missing
+//   compute -> compute barrier. So a test that wants barriers checked across frames must record those frames
+//   into one command buffer (one run_commands call).
 #pragma once
 
 #include <tressvk/engine/buffer.hpp>
