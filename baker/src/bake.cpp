@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <numeric>
+#include <span>
 
 namespace tressvk::baker {
 namespace {
@@ -32,7 +33,7 @@ struct ResampleError {
 };
 
 // Resamples a polyline to n vertices evenly spaced in arc length. `cum` holds the cumulative arc length.
-void resample(const std::vector<Vec3>& pts, const std::vector<double>& cum, uint32_t n, std::vector<Vec3>& out,
+void resample(std::span<const Vec3> pts, const std::vector<double>& cum, uint32_t n, std::vector<Vec3>& out,
               ResampleError& err) {
   out.resize(n);
   const double total = cum.back();
@@ -113,15 +114,15 @@ uint64_t reverse_bits(uint64_t v, int bits) {
 // bit-reversed curve order: a prefix of m guides takes about every (G/m)-th guide along the curve, which spreads
 // it over the whole scalp at every m. The seed picks a random starting point on the curve and a random
 // tie-break, so different seeds give different (equally even) orders.
-std::vector<uint32_t> lod_order(const std::vector<uint32_t>& kept, const RawGroom& groom, const std::vector<Vec3>& pts,
-                                uint64_t seed) {
+std::vector<uint32_t> lod_order(const std::vector<uint32_t>& kept, const std::vector<Vec3>& pts,
+                                const std::vector<uint32_t>& begin, uint64_t seed) {
   const size_t g = kept.size();
   if (g < 2) return kept;
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (uint32_t s : kept)
     for (size_t a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], pts[groom.strand_begin[s]][a]);
-      hi[a] = std::max(hi[a], pts[groom.strand_begin[s]][a]);
+      lo[a] = std::min(lo[a], pts[begin[s]][a]);
+      hi[a] = std::max(hi[a], pts[begin[s]][a]);
     }
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   const double q = extent > 0 ? static_cast<double>(0x1FFFFF) / extent : 0.0;
@@ -132,7 +133,7 @@ std::vector<uint32_t> lod_order(const std::vector<uint32_t>& kept, const RawGroo
   };
   std::vector<Key> keys(g);
   for (size_t i = 0; i < g; ++i) {
-    const Vec3& r = pts[groom.strand_begin[kept[i]]];
+    const Vec3& r = pts[begin[kept[i]]];
     uint64_t m = 0;
     for (size_t a = 0; a < 3; ++a) m |= spread_bits(static_cast<uint64_t>((r[a] - lo[a]) * q)) << a;
     keys[i] = {m, rng.next(), kept[i]};
@@ -184,59 +185,60 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
   rep.skipped_invalid = groom.skipped_invalid;
   rep.bone_influences_dropped = groom.bone_influences_dropped;
 
-  // 1. Units and axes first, so every threshold below is in metres of the final asset.
-  std::vector<Vec3> pts(groom.points.size());
-  for (size_t i = 0; i < pts.size(); ++i) {
-    pts[i] = convert(groom.points[i], o);
-    if (!std::isfinite(pts[i][0]) || !std::isfinite(pts[i][1]) || !std::isfinite(pts[i][2]))
-      throw InputError("a coordinate overflows after unit conversion and scaling (vertex " + std::to_string(i) + ")");
-  }
+  // 1. Scale-aware tolerances from the groom itself, in metres of the final asset: the unit conversion is a
+  // rotation and a uniform scale, so converted lengths are the input lengths times that scale.
+  const double to_metres = o.units_to_metres * o.scale;
   const size_t strands = groom.strand_count();
-
-  // 2. Scale-aware tolerances from the groom itself.
   {
     std::vector<double> seg;
-    seg.reserve(pts.size());
+    seg.reserve(groom.points.size());
     for (size_t s = 0; s < strands; ++s)
       for (uint32_t i = groom.strand_begin[s] + 1; i < groom.strand_begin[s + 1]; ++i) {
-        const double l = length(pts[i] - pts[i - 1]);
+        const double l = length(groom.points[i] - groom.points[i - 1]) * to_metres;
         if (l > 0) seg.push_back(l);
       }
     rep.median_segment_length = median(std::move(seg));
   }
   rep.merge_tolerance = o.merge_fraction * rep.median_segment_length;
 
-  // 3. Merge repeated vertices and sub-tolerance segments, strand by strand (root and tip are kept).
-  std::vector<std::vector<Vec3>> cleaned(strands);
+  // 2. Convert units and axes, and merge repeated vertices and sub-tolerance segments, strand by strand (roots
+  // and tips are kept). The result is flat: strand s is clean[begin[s] .. begin[s+1]).
+  std::vector<Vec3> clean;
+  clean.reserve(groom.points.size());
+  std::vector<uint32_t> begin(strands + 1, 0);
   std::vector<double> strand_length(strands, 0.0);
   for (size_t s = 0; s < strands; ++s) {
-    auto& c = cleaned[s];
     const uint32_t b = groom.strand_begin[s], e = groom.strand_begin[s + 1];
-    c.reserve(e - b);
+    const size_t first = clean.size();
     for (uint32_t i = b; i < e; ++i) {
-      if (!c.empty() && length(pts[i] - c.back()) <= rep.merge_tolerance) {
+      const Vec3 q = convert(groom.points[i], o);
+      if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
+        throw InputError("strand " + std::to_string(s) + ": a coordinate overflows after unit conversion and scaling");
+      if (clean.size() > first && length(q - clean.back()) <= rep.merge_tolerance) {
         ++rep.merged_vertices;
-        if (i + 1 == e && c.size() > 1) c.back() = pts[i];  // keep the real tip rather than the merged vertex
+        if (i + 1 == e && clean.size() - first > 1) clean.back() = q;  // keep the real tip, not the merged vertex
         continue;
       }
-      c.push_back(pts[i]);
+      clean.push_back(q);
     }
-    for (size_t i = 1; i < c.size(); ++i) strand_length[s] += length(c[i] - c[i - 1]);
+    begin[s + 1] = static_cast<uint32_t>(clean.size());
+    for (size_t i = first + 1; i < clean.size(); ++i) strand_length[s] += length(clean[i] - clean[i - 1]);
     if (!std::isfinite(strand_length[s]))
       throw InputError("strand " + std::to_string(s) + ": its length overflows (coordinates far out of range)");
   }
+  auto count = [&](size_t s) { return begin[s + 1] - begin[s]; };
   {
     std::vector<double> lengths;
     for (size_t s = 0; s < strands; ++s)
-      if (cleaned[s].size() >= 2) lengths.push_back(strand_length[s]);
+      if (count(s) >= 2) lengths.push_back(strand_length[s]);
     rep.median_strand_length = median(std::move(lengths));
   }
   rep.min_strand_length = o.min_length_fraction * rep.median_strand_length;
 
-  // 4. Keep strands that are long enough.
+  // 3. Keep strands that are long enough.
   std::vector<uint32_t> kept;
   for (size_t s = 0; s < strands; ++s) {
-    if (cleaned[s].size() < 2 || strand_length[s] < rep.min_strand_length || !(strand_length[s] > 0)) {
+    if (count(s) < 2 || strand_length[s] < rep.min_strand_length || !(strand_length[s] > 0)) {
       ++rep.dropped_short;
       continue;
     }
@@ -246,44 +248,26 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
                                      " strands are degenerate or shorter than the length threshold)");
   if (kept.size() > (uint64_t{1} << 31) / n) throw InputError("too many strands for one asset");
 
-  // 5. Level-of-detail order (see lod_order).
-  if (o.shuffle) kept = lod_order(kept, groom, pts, o.seed);
-
-  // 6. Resample (double), then the origin from the resampled bounds, rounded to a whole millimetre.
+  // 4. Level-of-detail order (see lod_order).
+  if (o.shuffle) kept = lod_order(kept, clean, begin, o.seed);
   const size_t g = kept.size();
-  std::vector<Vec3> resampled(g * n);
-  std::vector<double> cum;
-  std::vector<Vec3> tmp;
-  ResampleError err;
+
+  // 5. Origin: the centre of the kept strands' bounds, rounded to a whole millimetre (resampled vertices lie on
+  // the strands, so inside these bounds).
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-  uint64_t error_samples = 0;
-  for (size_t k = 0; k < g; ++k) {
-    const auto& c = cleaned[kept[k]];
-    cum.assign(c.size(), 0.0);
-    for (size_t i = 1; i < c.size(); ++i) cum[i] = cum[i - 1] + length(c[i] - c[i - 1]);
-    ResampleError e;
-    resample(c, cum, n, tmp, e);
-    err.max = std::max(err.max, e.max);
-    err.sum_sq += e.sum_sq;
-    error_samples += c.size();
-    rep.max_relative_resample_error = std::max(rep.max_relative_resample_error, e.max / cum.back());
-    for (uint32_t v = 0; v < n; ++v) {
-      resampled[k * n + v] = tmp[v];
-      for (size_t a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], tmp[v][a]);
-        hi[a] = std::max(hi[a], tmp[v][a]);
+  for (uint32_t s : kept)
+    for (uint32_t i = begin[s]; i < begin[s + 1]; ++i)
+      for (size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], clean[i][k]);
+        hi[k] = std::max(hi[k], clean[i][k]);
       }
-    }
-  }
-  rep.max_resample_error = err.max;
-  rep.rms_resample_error = error_samples ? std::sqrt(err.sum_sq / static_cast<double>(error_samples)) : 0.0;
 
   asset::HairAsset a;
   a.vertices_per_strand = n;
   a.follow_per_guide = o.follow_per_guide;
   a.tip_separation = o.tip_separation;
   for (size_t k = 0; k < 3; ++k) a.origin[k] = std::round((lo[k] + hi[k]) * 0.5 * 1000.0) / 1000.0 + 0.0;  // + 0.0: no negative zero
-
+  const Vec3 origin{a.origin[0], a.origin[1], a.origin[2]};
 
   // 7. Per-vertex data, computed from the float32 positions the runtime will actually see.
   a.rest_positions.resize(g * n);
@@ -293,11 +277,26 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
   std::vector<Vec3> p(n);
   std::vector<Quat> frames;
   std::vector<Vec3> edges;
+  std::vector<double> cum;
+  std::vector<Vec3> resampled;
+  ResampleError err;
+  uint64_t error_samples = 0;
   const uint32_t pin = std::min(o.pin, n);
   for (size_t k = 0; k < g; ++k) {
+    // Resample (double), with the error against the input vertices.
+    const std::span<const Vec3> c(clean.data() + begin[kept[k]], count(kept[k]));
+    cum.assign(c.size(), 0.0);
+    for (size_t i = 1; i < c.size(); ++i) cum[i] = cum[i - 1] + length(c[i] - c[i - 1]);
+    ResampleError e;
+    resample(c, cum, n, resampled, e);
+    err.max = std::max(err.max, e.max);
+    err.sum_sq += e.sum_sq;
+    error_samples += c.size();
+    rep.max_relative_resample_error = std::max(rep.max_relative_resample_error, e.max / cum.back());
+
     const bool pin_tip = groom.strand_pin_tip[kept[k]] != 0;
     for (uint32_t v = 0; v < n; ++v) {
-      const Vec3 rel = resampled[k * n + v] - Vec3{a.origin[0], a.origin[1], a.origin[2]};
+      const Vec3 rel = resampled[v] - origin;
       const std::array<float, 3> f{static_cast<float>(rel[0]), static_cast<float>(rel[1]), static_cast<float>(rel[2])};
       p[v] = {f[0], f[1], f[2]};
       const bool pinned = v < pin || (pin_tip && v + pin >= n);
@@ -317,6 +316,9 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
                                        static_cast<float>(edges[v][2]), 0.0f};
     }
   }
+
+  rep.max_resample_error = err.max;
+  rep.rms_resample_error = error_samples ? std::sqrt(err.sum_sq / static_cast<double>(error_samples)) : 0.0;
 
   // 8. Groups: only those still used, in first-use order of the original group list.
   std::vector<int> group_map(groom.group_names.size(), -1);
