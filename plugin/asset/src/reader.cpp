@@ -207,7 +207,8 @@ ReadResult inspect(std::span<const std::byte> bytes) {
                       " lies outside the data area",
                   info);
     if (s.offset % kAlignment != 0) return fail(where + "offset not aligned to 64 bytes", info);
-    if (s.stride == 0 || s.size != s.count * s.stride || s.count > s.size)
+    // Division, not multiplication: count x stride could wrap around for damaged values.
+    if (s.stride == 0 || s.size % s.stride != 0 || s.count != s.size / s.stride)
       return fail(where + "size " + std::to_string(s.size) + " is not count " + std::to_string(s.count) +
                       " x stride " + std::to_string(s.stride),
                   info);
