@@ -77,6 +77,8 @@ RawGroom import_file(const std::filesystem::path& path, const ObjImportOptions& 
   if (std::filesystem::is_directory(path)) throw IoError(path.string() + ": is a directory, not a hair file");
   // Unknown extension: a .tfx starts with a float version 3.x/4.x, an OBJ is text.
   const auto bytes = read_binary_file(path);
+  if (bytes.size() >= 4 && std::memcmp(bytes.data(), "\x89TVK", 4) == 0)
+    throw InputError(path.string() + ": this is a baked .tvkhair asset, not hair to bake (see `tressvk-bake info`)");
   if (bytes.size() >= 4) {
     const float v = load<float>(bytes, 0);
     if (v >= 3.0f && v < 6.0f) return import_tfx_bytes(bytes, path.string());
