@@ -8,6 +8,7 @@
 
 // Relative thresholds (all lengths are compared with a rest length, never with a constant in metres).
 const float kDirectionEps = 1e-4;  // an edge shorter than this fraction of its rest length has no direction
+const float kFtlVelocityCorrection = 0.9;  // DFTL: share of a child's follow-the-leader move its parent gets back
 
 vec4 quat_mul(vec4 a, vec4 b) {
   return vec4(a.w * b.xyz + b.w * a.xyz + cross(a.xyz, b.xyz), a.w * b.w - dot(a.xyz, b.xyz));

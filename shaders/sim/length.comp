@@ -92,6 +92,11 @@ void main() {
       vec3 corr = ((len - rest_info[b + v].x) / (len * wsum)) * d;
       if (wa > 0.0) pos[b + v] = vec4(p.xyz + wa * corr, p.w);
       if (wb > 0.0) pos[b + v + 1u] = vec4(n.xyz - wb * corr, n.w);
+      // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),
+      // which keeps the strand's momentum plausible and removes FTL's energy gain.
+      if (last_sweep && wa == 0.0 && wb > 0.0 && p.w > 0.0) {
+        prev[b + v] = vec4(prev[b + v].xyz - kFtlVelocityCorrection * corr, p.w);
+      }
     }
   }
 

@@ -78,9 +78,11 @@ typedef struct TvkCapsule {
 } TvkCapsule;
 
 /* Time policy: a fixed step with an accumulator. Each frame adds its dt; whole steps of 1/step_rate run, at most
- * max_steps_per_frame of them; when the cap is hit, the rest of that frame's time is dropped (a 0.25 s hitch
- * costs one frame of slow motion, never an explosion and never a catch-up spiral). The head motion of the frame
- * is interpolated across its steps. A frame shorter than one step runs no step and carries its motion over. */
+ * max_steps_per_frame of them. When the cap is hit, the surplus steps are dropped and the instance's motion
+ * during them moves the hair rigidly, as a teleport does; the kept steps simulate the end of the frame's motion
+ * at its real speed (a 0.25 s hitch never explodes, never whips the hair, and leaves no catch-up debt). The head
+ * motion of the frame is interpolated across its steps. A frame shorter than one step runs no step and carries
+ * its motion over. */
 typedef struct TvkTimeSettings {
   float step_rate;          /* Hz, 30..480. Default 120 (2 steps at 60 fps: root motion is resolved twice per
                                frame, gravity moves a vertex < 1 mm per step, and 30/60/120/144 fps hosts all

@@ -107,6 +107,16 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   accumulator_ = std::max(0.0, accumulator_ - whole);
   if (n > settings_.time.max_steps_per_frame) {
     plan.dropped_steps = n - settings_.time.max_steps_per_frame;
+    // Hitch: the instance motion of the dropped steps carries the hair rigidly (like a teleport: no velocity is
+    // added), and the last max_steps_per_frame steps simulate the end of the motion at its real speed. Squeezing
+    // the whole motion into the kept steps would multiply velocities by n/max (16 m/s hair tips for a head turn).
+    if (!pending_reset_) {
+      const double alpha = static_cast<double>(plan.dropped_steps) / static_cast<double>(n);
+      const Pose mid{mix(last_.t, now.t, alpha), slerp(last_.r, now.r, alpha)};
+      pending_turn_ = normalize(quat_mul(quat_mul(mid.r, conjugate(last_.r)), pending_turn_));
+      pending_teleport_ = true;
+      last_ = mid;
+    }
     n = settings_.time.max_steps_per_frame;
   }
 

@@ -276,6 +276,9 @@ void Simulator::length_and_collision(const Substep& st) {
         const Vec3 corr = ((len - rest_.rest_length[b + v]) / (len * wsum)) * d;
         if (wa > 0.0) pos_[b + v] += wa * corr;
         if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
+        // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (the
+        // DFTL correction), which keeps the strand's momentum plausible and removes FTL's energy gain.
+        if (last_sweep && wa == 0.0 && wb > 0.0 && movable(b + v)) prev_[b + v] -= kFtlVelocityCorrection * corr;
       }
     }
 

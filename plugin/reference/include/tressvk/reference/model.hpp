@@ -24,6 +24,9 @@ inline constexpr double kFrameEdgeRatio = 0.2;
 inline constexpr double kFrameEdgeMinRel = 1e-3;
 // The root edge drives the VSP swing only if it is at least this fraction of the strand's mean segment.
 inline constexpr double kRootSwingMinRel = 0.25;
+// The share of the follow-the-leader move of a child that its parent receives back as velocity (DFTL, Mueller
+// et al. 2012, who recommend 0.9..1). GLSL twin: kFtlVelocityCorrection in common.glsl.
+inline constexpr double kFtlVelocityCorrection = 0.9;
 // GLSL twin: kDirectionEps in common.glsl.
 inline constexpr double kDirectionEps = 1e-4;
 

@@ -8,9 +8,11 @@
 //
 // Time policy (docs/simulation.md): fixed step h = 1/step_rate; an accumulator collects frame time; a frame
 // runs floor(accumulated/h) steps, at most max_steps_per_frame; when capped, the surplus whole steps are dropped
-// (the frame plays in slow motion; nothing explodes and nothing is owed to later frames). The instance (and bone)
-// motion since the last simulated step is interpolated across the frame's steps (lerp/slerp), so k steps see k
-// equal slices of it. A frame with no step carries its motion over to the next step.
+// and the instance motion they covered carries the hair rigidly (as a teleport does: no velocity is added), so
+// the kept steps simulate the end of the frame's motion at its real speed and nothing is owed to later frames.
+// The instance (and bone) motion since the last simulated step is interpolated across the frame's steps
+// (lerp/slerp), so k steps see k equal slices of it. A frame with no step carries its motion over to the next
+// step.
 #pragma once
 
 #include <array>
