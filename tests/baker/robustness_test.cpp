@@ -179,6 +179,17 @@ TEST_CASE("Robustness: mutated .tfx and .tfxbone never crash", "[baker][robustne
   SUCCEED("no crash, no unexpected exception");
 }
 
+TEST_CASE("Robustness: mutated real OBJ data never crashes", "[baker][robustness]") {
+  const auto dir = tvk_test::data_dir();
+  if (dir.empty()) SKIP("real hair data not found: set TRESSVK_DATA_DIR to the shared/data directory");
+  // Cube_Hair.obj (Blender edges, 1,000 strands), mutated; most mutants stay bakeable.
+  const auto bytes = tvk_test::read_bytes(dir / "unity" / "Cube_Hair.obj");
+  Mutator m(5);
+  int ok = 0;
+  for (int i = 0; i < scaled(100); ++i) ok += bake_obj_bytes(m.mutate(bytes));
+  CHECK(ok > 0);
+}
+
 TEST_CASE("Robustness: mutated .tvkhair files are refused cleanly by the reader", "[baker][robustness]") {
   Mutator m(3);
   baker::BuiltinGroomOptions o;
@@ -207,7 +218,7 @@ TEST_CASE("Robustness: the CLI exits 0 or 2 on mutated inputs, never crashes", "
   const auto tfx = tvk_test::temp_dir() / "robust.tfx";
   const auto bone = tvk_test::temp_dir() / "robust.tfxbone";
   tvk_test::write_bytes(bone, tfxbone_seed());
-  for (int i = 0; i < 12; ++i) {
+  for (int i = 0; i < scaled(12); ++i) {
     tvk_test::write_bytes(obj, m.mutate(to_bytes(obj_seed())));
     const int rc = tvk_test::run_bake(tvk_test::quoted(obj) + " -o " + tvk_test::quoted(out) + " --follow 2");
     INFO("obj mutation " << i);
