@@ -145,7 +145,7 @@ ReadResult read_impl(std::span<const std::byte> bytes) {
 
 }  // namespace
 
-ReadResult inspect(std::span<const std::byte> bytes) {
+static ReadResult inspect_impl(std::span<const std::byte> bytes) {
   if (bytes.empty()) return fail("empty file");
   if (bytes.size() < kHeaderSize || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
     if (bytes.size() >= 4 && std::memcmp(bytes.data() + 1, "TVK", 3) == 0)
@@ -243,6 +243,14 @@ ReadResult inspect(std::span<const std::byte> bytes) {
   r.status = ReadStatus::kOk;
   r.info = std::move(info);
   return r;
+}
+
+ReadResult inspect(std::span<const std::byte> bytes) {
+  try {
+    return inspect_impl(bytes);
+  } catch (const std::exception& ex) {  // only allocation failure is possible here; still never throw
+    return fail(std::string("cannot inspect the asset: ") + ex.what());
+  }
 }
 
 ReadResult read(std::span<const std::byte> bytes) {
