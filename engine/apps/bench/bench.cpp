@@ -134,7 +134,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
     const bool step_error_now = measured(f) && state_is_previous;
     if (step_error_now) step_ref.set_state(state.pos, state.prev, state.prevprev);
     const auto t0 = std::chrono::steady_clock::now();
-    const reference::FramePlan plan = traj_ref.advance(frame);
+    const reference::FramePlan plan = opt.trajectory ? traj_ref.advance(frame) : traj_ref.planner().plan(frame);
     const auto t1 = std::chrono::steady_clock::now();
     if (step_error_now)
       step_ref.advance(frame);
@@ -163,7 +163,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
       check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
     });
     steps_total += plan.steps.size();
-    if (timed) cpu_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (timed && opt.trajectory) cpu_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
 
     state_is_previous = false;
     if (!measured(f) && !measured(f + 1)) continue;
@@ -175,10 +175,13 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
       step_errors.push_back(e.max_rel);
       out.step_error_max_rel = std::max(out.step_error_max_rel, e.max_rel);
     }
-    const auto te = reference::position_error(std::span<const sim::Vec4>(state.pos), traj_ref.positions(), median_length);
-    traj_sum_sq += te.rms_rel * te.rms_rel;
+    if (opt.trajectory) {
+      const auto te =
+          reference::position_error(std::span<const sim::Vec4>(state.pos), traj_ref.positions(), median_length);
+      traj_sum_sq += te.rms_rel * te.rms_rel;
+      out.trajectory_error_max_rel = std::max(out.trajectory_error_max_rel, te.max_rel);
+    }
     ++traj_count;
-    out.trajectory_error_max_rel = std::max(out.trajectory_error_max_rel, te.max_rel);
     const auto st = reference::stretch(std::span<const sim::Vec4>(state.pos), step_ref.rest());
     stretch_mean_sum += st.mean;
     out.stretch_max = std::max(out.stretch_max, st.max);
@@ -217,7 +220,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   for (double e : step_errors) sum_sq += e * e;
   out.step_error_rms_rel = step_errors.empty() ? 0 : std::sqrt(sum_sq / static_cast<double>(step_errors.size()));
   out.stretch_mean = traj_count ? stretch_mean_sum / static_cast<double>(traj_count) : 0;
-  out.trajectory_error_rms_rel = traj_count ? std::sqrt(traj_sum_sq / static_cast<double>(traj_count)) : 0;
+  out.trajectory_error_rms_rel = traj_count && opt.trajectory ? std::sqrt(traj_sum_sq / static_cast<double>(traj_count)) : 0;
 
   dev.wait_idle();
   tressvk_destroy_instance(inst);

@@ -16,6 +16,7 @@ struct CompareOptions {
   uint32_t frames = 300;
   uint32_t warmup = 30;              // frames run before timing (pipelines compiled, caches warm)
   uint32_t step_error_every = 1;     // measure the one-frame step error every Nth frame (it reads the state back)
+  bool trajectory = true;            // also run a free-running reference every frame (costly for big grooms)
   TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
   TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
 };

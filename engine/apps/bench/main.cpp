@@ -47,7 +47,7 @@ nlohmann::json to_json(const bench::CompareResult& r, const bench::CompareOption
       {"cpu_reference_ms_per_frame", r.cpu_reference_ms_per_frame},
       {"step_error_max_rel", r.step_error_max_rel},
       {"step_error_rms_rel", r.step_error_rms_rel},
-      {"trajectory_error_rms_rel", r.trajectory_error_rms_rel},
+      {"trajectory_error_rms_rel", o.trajectory ? nlohmann::json(r.trajectory_error_rms_rel) : nlohmann::json()},
       {"trajectory_error_max_rel", r.trajectory_error_max_rel},
       {"stretch_mean", r.stretch_mean},
       {"stretch_max", r.stretch_max},
@@ -94,6 +94,8 @@ int main(int argc, char** argv) {
   compare->add_option("--frames", o.frames, "timed frames")->capture_default_str();
   compare->add_option("--warmup", o.warmup, "frames run before timing")->capture_default_str();
   compare->add_option("--step-error-every", o.step_error_every, "measure the step error every Nth frame")->capture_default_str();
+  bool no_trajectory = false;
+  compare->add_flag("--no-trajectory", no_trajectory, "skip the free-running reference (for large grooms)");
   compare->add_option("--guides", groom_options.guide_count, "guides of a built-in groom")->capture_default_str();
   compare->add_option("--follows", groom_options.follow_per_guide, "follow hairs per guide of a built-in groom")->capture_default_str();
   compare->add_option("--vertices", groom_options.vertices_per_strand, "vertices per strand of a built-in groom (0 = its default)");
@@ -106,6 +108,7 @@ int main(int argc, char** argv) {
   compare->add_flag("--validation", validation, "enable the Vulkan validation layer");
   CLI11_PARSE(app, argc, argv);
 
+  o.trajectory = !no_trajectory;
   try {
     const auto names = reference::scene_names();
     if (std::find(names.begin(), names.end(), o.scene) == names.end()) {
