@@ -106,7 +106,8 @@ OffscreenTarget create_offscreen_target(const Device& device, uint32_t width, ui
                                       VK_IMAGE_USAGE_SAMPLED_BIT});
   if (depth_format != VK_FORMAT_UNDEFINED)
     target.depth = Image(device, {width, height, depth_format,
-                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
   return target;
 }
 
@@ -259,8 +260,9 @@ std::array<uint8_t, 4> Pixels::rgba8(uint32_t x, uint32_t y) const {
 namespace {
 uint32_t readback_texel_size(const Image& image) {
   const uint32_t texel = format_texel_size(image.format());
-  if (texel == 0 || is_depth_format(image.format()))
-    throw Error("image readback: colour format " + std::to_string(image.format()) + " is not supported");
+  // Of the depth formats only D32_SFLOAT copies out as plain floats; packed D24 and stencil formats do not.
+  if (texel == 0 || (is_depth_format(image.format()) && image.format() != VK_FORMAT_D32_SFLOAT))
+    throw Error("image readback: format " + std::to_string(image.format()) + " is not supported");
   return texel;
 }
 }  // namespace
@@ -270,10 +272,10 @@ void cmd_readback_image(VkCommandBuffer cmd, const Image& image, const ResourceS
   if (buffer.size() < bytes || !buffer.mapped())
     throw Error("image readback: the buffer must be a mapped readback buffer of at least " + std::to_string(bytes) +
                 " bytes");
-  cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, current, state::kTransferSrc);
+  cmd_image_barrier(cmd, image.handle(), image.aspect(), current, state::kTransferSrc);
   VkBufferImageCopy region{};
   region.bufferRowLength = 0;  // tightly packed
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageSubresource = {image.aspect(), 0, 0, 1};
   region.imageExtent = {image.width(), image.height(), 1};
   vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.handle(), 1, &region);
   cmd_buffer_barrier(cmd, buffer.handle(), state::kTransferDst, state::kHostRead);
@@ -292,6 +294,13 @@ Pixels pixels_from_buffer(const Buffer& buffer, const Image& image) {
   return pixels;
 }
 
+float Pixels::r32f(uint32_t x, uint32_t y) const {
+  if (x >= width || y >= height || texel_size != 4) throw Error("Pixels::r32f: out of range or not 32-bit");
+  float value = 0.0f;
+  std::memcpy(&value, data.data() + (static_cast<size_t>(y) * width + x) * 4, sizeof(float));
+  return value;
+}
+
 Pixels read_image(const Device& device, const Image& image, const ResourceState& current) {
   const VkDeviceSize bytes = VkDeviceSize{readback_texel_size(image)} * image.width() * image.height();
   Buffer staging = create_buffer(device, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback);
@@ -299,7 +308,7 @@ Pixels read_image(const Device& device, const Image& image, const ResourceState&
     cmd_readback_image(cmd, image, current, staging);
     // Back to the caller's layout; later users wait for the copy's read.
     if (current.layout != VK_IMAGE_LAYOUT_UNDEFINED)
-      cmd_image_barrier(cmd, image.handle(), VK_IMAGE_ASPECT_COLOR_BIT, state::kTransferSrc, current);
+      cmd_image_barrier(cmd, image.handle(), image.aspect(), state::kTransferSrc, current);
   });
   return pixels_from_buffer(staging, image);
 }

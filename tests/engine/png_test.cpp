@@ -1,72 +1,75 @@
 #include <tressvk/engine/png.hpp>
 
 #include <catch2/catch_test_macros.hpp>
-
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wold-style-cast"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wcast-align"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#endif
-#include <stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+#include <catch2/matchers/catch_matchers_string.hpp>
 
 #include <filesystem>
 
 using namespace tressvk::engine;
+using Catch::Matchers::ContainsSubstring;
 
-TEST_CASE("write_png writes RGBA pixels that read back identically, swizzling BGRA", "[engine]") {
+namespace {
+Pixels gradient(uint32_t w, uint32_t h) {
   Pixels pixels;
-  pixels.width = 5;
-  pixels.height = 3;
+  pixels.width = w;
+  pixels.height = h;
   pixels.texel_size = 4;
-  for (uint32_t i = 0; i < pixels.width * pixels.height; ++i) {
+  for (uint32_t i = 0; i < w * h; ++i) {
     pixels.data.push_back(static_cast<uint8_t>(i * 10));
     pixels.data.push_back(static_cast<uint8_t>(255 - i));
     pixels.data.push_back(static_cast<uint8_t>(i * 3));
     pixels.data.push_back(static_cast<uint8_t>(i % 2 ? 255 : 128));
   }
+  return pixels;
+}
+}  // namespace
+
+TEST_CASE("write_png writes RGBA pixels that read back identically, swizzling BGRA", "[engine]") {
+  const Pixels pixels = gradient(5, 3);
   const auto dir = std::filesystem::temp_directory_path() / "tressvk_png_test" / "nested";
   std::filesystem::remove_all(dir.parent_path());
-  for (const bool bgra : {false, true}) {
-    const auto path = dir / (bgra ? "bgra.png" : "rgba.png");
-    write_png(path, pixels, bgra);  // creates the missing directories
-    int w = 0, h = 0, n = 0;
-    unsigned char* read = stbi_load(path.c_str(), &w, &h, &n, 4);
-    REQUIRE(read != nullptr);
-    CHECK(w == 5);
-    CHECK(h == 3);
-    bool same = true;
-    for (size_t i = 0; i < pixels.data.size(); ++i) {
-      const size_t channel = i % 4;
-      const size_t swapped = bgra && channel != 1 && channel != 3 ? (i - channel) + (2 - channel) : i;
-      if (read[i] != pixels.data[swapped]) same = false;
-    }
-    stbi_image_free(read);
-    CHECK(same);
-  }
+  write_png(dir / "rgba.png", pixels);  // creates the missing directories
+  const Pixels rgba = read_png(dir / "rgba.png");
+  CHECK(rgba.width == 5);
+  CHECK(rgba.height == 3);
+  CHECK(rgba.data == pixels.data);
+
+  write_png(dir / "bgra.png", pixels, /*bgra=*/true);
+  const Pixels swapped = read_png(dir / "bgra.png");
+  REQUIRE(swapped.data.size() == pixels.data.size());
+  bool same = true;
+  for (size_t i = 0; i < pixels.data.size(); i += 4)
+    same = same && swapped.data[i] == pixels.data[i + 2] && swapped.data[i + 1] == pixels.data[i + 1] &&
+           swapped.data[i + 2] == pixels.data[i] && swapped.data[i + 3] == pixels.data[i + 3];
+  CHECK(same);
   std::filesystem::remove_all(dir.parent_path());
 }
 
-TEST_CASE("write_png refuses pixels that are not 8-bit RGBA and names the file", "[engine]") {
-  Pixels pixels;
-  pixels.width = 2;
-  pixels.height = 2;
-  pixels.texel_size = 16;
-  pixels.data.resize(64);
-  try {
-    write_png("/tmp/tressvk_png_test_bad.png", pixels);
-    FAIL("write_png accepted float pixels");
-  } catch (const Error& e) {
-    CHECK(std::string(e.what()).find("tressvk_png_test_bad.png") != std::string::npos);
-  }
+TEST_CASE("PNG errors name the file", "[engine]") {
+  Pixels floats;
+  floats.width = 2;
+  floats.height = 2;
+  floats.texel_size = 16;
+  floats.data.resize(64);
+  CHECK_THROWS_WITH(write_png("/tmp/tressvk_png_test_bad.png", floats), ContainsSubstring("tressvk_png_test_bad.png"));
+  CHECK_THROWS_WITH(read_png("/nonexistent/tressvk_missing.png"), ContainsSubstring("tressvk_missing.png"));
+}
+
+TEST_CASE("compare_rgba8 measures channel differences against a threshold", "[engine]") {
+  const Pixels a = gradient(4, 4);
+  Pixels b = a;
+  CHECK(compare_rgba8(a, b, 0).max_channel_diff == 0);
+  CHECK(compare_rgba8(a, b, 0).pixels_over == 0);
+  b.data[0] = static_cast<uint8_t>(b.data[0] + 3);   // pixel 0: red +3
+  b.data[4 * 5 + 2] = static_cast<uint8_t>(b.data[4 * 5 + 2] + 10);  // pixel 5: blue +10
+  const PixelDiff d = compare_rgba8(a, b, 4);
+  CHECK(d.max_channel_diff == 10);
+  CHECK(d.pixels_over == 1);  // only the +10 exceeds 4
+  CHECK(d.fraction_over == 1.0 / 16.0);
+  CHECK(d.mean_channel_diff == 13.0 / 64.0);
+  const Pixels visual = diff_image(a, b, 4);
+  CHECK(visual.data[0] == 12);
+  CHECK(visual.data[3] == 255);
+  Pixels small = gradient(2, 2);
+  CHECK_THROWS_AS(compare_rgba8(a, small, 0), Error);
 }

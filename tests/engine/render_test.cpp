@@ -117,4 +117,17 @@ TEST_CASE("offscreen clear + depth-tested draws read back the expected pixels", 
   // centres, so the count may differ by up to about half the perimeter in pixels (32 + 2 * 35.8 ≈ 104 / 2);
   // the part hidden by nothing (red is behind) does not change it.
   CHECK(std::abs(static_cast<long>(green_count) - 512) <= 52);
+
+  // Depth reads back as the nearest surface's z (shadow-map tests rely on this): the exact vertex z where one
+  // triangle covers (constant z, so no interpolation error), the clear value where none does.
+  const engine::Pixels depth = engine::read_image(
+      dev, target.depth, use_render_pass ? engine::state::kDepthStencilAttachment : engine::state::kDepthAttachment);
+  auto depth_at = [&](float x, float y) {
+    const auto p = pixel_at(x, y, kSize);
+    return depth.r32f(p[0], p[1]);
+  };
+  CHECK(depth_at(0.0f, 0.0f) == 0.25f);
+  CHECK(depth_at(-0.3f, -0.4f) == 0.25f);
+  CHECK(depth_at(-0.8f, 0.0f) == 0.75f);
+  CHECK(depth_at(0.8f, 0.8f) == 1.0f);
 }

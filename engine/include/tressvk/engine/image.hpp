@@ -113,9 +113,12 @@ struct Pixels {
   std::vector<uint8_t> data;
   // 8-bit RGBA (or BGRA as stored) pixel at (x, y).
   std::array<uint8_t, 4> rgba8(uint32_t x, uint32_t y) const;
+  // 32-bit float texel (R32_SFLOAT colour or D32_SFLOAT depth) at (x, y).
+  float r32f(uint32_t x, uint32_t y) const;
 };
 
-// Copies a colour image in state `current` to the CPU (waits). The image is left in `current`'s layout.
+// Copies an image in state `current` to the CPU (waits): 8-bit RGBA/BGRA, float colour, or D32_SFLOAT depth
+// (e.g. a shadow map). The image is left in `current`'s layout.
 Pixels read_image(const Device& device, const Image& image, const ResourceState& current);
 
 class Buffer;
