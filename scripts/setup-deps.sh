@@ -54,7 +54,10 @@ mkdir -p "$APTDIR/bp/lists/partial" "$APTDIR/tx/lists/partial" "$APTDIR/deb"
 MIRROR=$(grep -rhE '^(URIs:|deb) ' /etc/apt/sources.list /etc/apt/sources.list.d/ 2>/dev/null \
   | grep -oE 'https?://[^ ]+/debian/?( |$)' | grep -v security | head -1 | tr -d ' ' || true)
 MIRROR=${MIRROR:-http://deb.debian.org/debian}
-echo "deb $MIRROR bookworm-backports main" > "$APTDIR/bp/sources.list"
+# Overriding Dir::Etc::SourceList replaces /etc/apt/sources.list, so carry its entries over (a minimal system
+# keeps its bookworm source there; others use sources.list.d/, which stays active).
+{ [ -f /etc/apt/sources.list ] && grep -E '^deb ' /etc/apt/sources.list || true
+  echo "deb $MIRROR bookworm-backports main"; } > "$APTDIR/bp/sources.list"
 echo "deb $MIRROR trixie main" > "$APTDIR/tx/sources.list"
 # Bookworm sources stay active; backports are added; all indexes go to a private lists directory.
 BP=(-o "Dir::Etc::SourceList=$APTDIR/bp/sources.list" -o "Dir::State::Lists=$APTDIR/bp/lists")
