@@ -34,9 +34,12 @@ RawGroom import_obj_text(std::string_view text, std::string_view name, const Obj
 RawGroom import_obj(const std::filesystem::path& path, const ObjImportOptions& options = {});
 // Reads the faces of an OBJ file (its polylines are ignored). InputError when it has no faces.
 ScalpMesh load_scalp(const std::filesystem::path& path);
-// Reverses every strand whose last vertex is nearer the scalp surface than its first (brute force over the
-// triangles: O(strands x triangles), fine for scalp meshes of a few thousand triangles).
+// Reverses every strand whose last vertex is nearer the scalp surface than its first (a uniform grid over the
+// triangles keeps this near O(strands) for real scalps).
 void orient_to_scalp(RawGroom& groom, const ScalpMesh& scalp);
+// Distance from p to the scalp surface, through the grid and by brute force (the latter for tests).
+double distance_to_scalp(const Vec3& p, const ScalpMesh& scalp);
+double distance_to_scalp_brute_force(const Vec3& p, const ScalpMesh& scalp);
 
 RawGroom import_tfx_bytes(std::span<const std::byte> bytes, std::string_view name);
 RawGroom import_tfx(const std::filesystem::path& path);
