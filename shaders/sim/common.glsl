@@ -36,12 +36,16 @@ vec4 quat_from_two_unit(vec3 a, vec3 b) {
   return normalize(vec4(cross(a, b), 1.0 + d));
 }
 
-// Turns frame q minimally so that its local +X points along e; leaves it when e is too short to trust.
-vec4 frame_align(vec4 q, vec3 e, float min_len) {
-  float len = length(e);
-  if (!(len > min_len)) return q;
+// Turns frame q minimally so that its local +X points along edge e (rest length rest_len). A compressed edge
+// is blended with the frame's current +X by the missing length, so that its direction stays well defined as it
+// collapses (a bare normalize(e) would turn float rounding into arbitrary directions); at or above rest length
+// it is e's own direction.
+vec4 frame_align(vec4 q, vec3 e, float rest_len) {
   vec3 x = quat_rotate(q, vec3(1, 0, 0));
-  return normalize(quat_mul(quat_from_two_unit(x, e / len), q));
+  vec3 d = e + max(rest_len - length(e), 0.0) * x;
+  float len = length(d);
+  if (!(len > kDirectionEps * rest_len)) return q;
+  return normalize(quat_mul(quat_from_two_unit(x, d / len), q));
 }
 
 float strand_rest_length(uint g) { return uintBitsToFloat(guide_info[g].z); }
@@ -56,7 +60,7 @@ vec3 skin_point(uint g, vec3 x) {
     vec4 r0 = vec4(0), r1 = vec4(0), r2 = vec4(0);
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
-      uint o = pc.skin_base + 4u * bi[i];
+      uint o = pc.skin_base + TVK_SKIN_VEC4 * bi[i];
       r0 += bw[i] * skin[o];
       r1 += bw[i] * skin[o + 1u];
       r2 += bw[i] * skin[o + 2u];
@@ -73,16 +77,32 @@ vec4 skin_rotation(uint g) {
   if (TVK_HAS(TVK_FEATURE_SKINNING)) {
     uvec4 bi = bone_index[g];
     vec4 bw = bone_weight[g];
-    vec4 q0 = skin[pc.skin_base + 4u * bi[0] + 3u];
+    vec4 q0 = skin[pc.skin_base + TVK_SKIN_VEC4 * bi[0] + 3u];
     vec4 q = vec4(0);
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
-      vec4 qi = skin[pc.skin_base + 4u * bi[i] + 3u];
+      vec4 qi = skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + 3u];
       q += (dot(qi, q0) < 0.0 ? -bw[i] : bw[i]) * qi;
     }
     return normalize(q);
   }
   return skin[pc.skin_base + 3u];
+}
+
+// The strand's skinning rotation since the previous step (bone deltas blended; they are near identity with
+// w >= 0, so no hemisphere flip is needed).
+vec4 skin_delta(uint g) {
+  if (TVK_HAS(TVK_FEATURE_SKINNING)) {
+    uvec4 bi = bone_index[g];
+    vec4 bw = bone_weight[g];
+    vec4 q = vec4(0);
+    for (uint i = 0u; i < 4u; ++i) {
+      if (bw[i] == 0.0) continue;
+      q += bw[i] * skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + 4u];
+    }
+    return normalize(q);
+  }
+  return skin[pc.skin_base + 4u];
 }
 
 // The guide's root frame now: the skinned rest root frame, turned onto the current root edge when that edge is
@@ -91,7 +111,7 @@ vec4 current_root_frame(uint g) {
   vec4 f = quat_mul(skin_rotation(g), root_frame[g]);
   uint b = g * N;
   if (rest_info[b + 1u].z != 0.0) {
-    f = frame_align(f, pos[b + 1u].xyz - pos[b].xyz, kDirectionEps * rest_info[b].x);
+    f = frame_align(f, pos[b + 1u].xyz - pos[b].xyz, rest_info[b].x);
   }
   return f;
 }

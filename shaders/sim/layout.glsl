@@ -42,17 +42,17 @@ layout(std430, set = 0, binding = 5) readonly buffer RestInfo { vec4 rest_info[]
 layout(std430, set = 0, binding = 6) readonly buffer RestEdgeLocal { vec4 rest_edge_local[]; };  // G*N: edge leaving v in the model frame at v; w = 0
 layout(std430, set = 0, binding = 7) readonly buffer RootFrames { vec4 root_frame[]; };   // G: rest frame at the root, quaternion (x,y,z,w)
 layout(std430, set = 0, binding = 8) readonly buffer FollowOffsets { vec4 follow_offset[]; };  // G*K, in the root frame; w = 0
-// x: strand group; y: TVK_GUIDE_* flags; z: floatBitsToUint(strand rest length, m); w: 0.
+// x: strand group; y: 0 (reserved flags); z: floatBitsToUint(strand rest length, m); w: 0.
 layout(std430, set = 0, binding = 9) readonly buffer GuideInfo { uvec4 guide_info[]; };   // G
 layout(std430, set = 0, binding = 10) readonly buffer BoneIndices { uvec4 bone_index[]; }; // G (read only with SKINNING)
 layout(std430, set = 0, binding = 11) readonly buffer BoneWeights { vec4 bone_weight[]; }; // G (read only with SKINNING)
 
-#define TVK_GUIDE_ROOT_SWING 1u  // the root edge is long enough for VSP to take its swing from it
-
 // ---- per-frame parameters, written by the host into a ring (one slice per frame in flight) ----------------
-// Skinning, per substep s and bone b, 4 vec4 at skin[pc.skin_base + 4*b] (pc.skin_base selects the substep):
-// [0..2] rows of the affine 3x4 map from asset space (rest positions) to simulation space, instance motion
-// included; [3] the rotation of that map as a quaternion (x,y,z,w).
+// Skinning, per substep s and bone b, TVK_SKIN_VEC4 vec4 at skin[pc.skin_base + TVK_SKIN_VEC4*b] (pc.skin_base
+// selects the substep): [0..2] rows of the affine 3x4 map from asset space (rest positions) to simulation space,
+// instance motion included; [3] the rotation of that map as a quaternion (x,y,z,w); [4] its rotation since the
+// previous step (identity at a reset), computed in double on the host: the rigid motion VSP propagates.
+#define TVK_SKIN_VEC4 5u
 layout(std430, set = 0, binding = 12) readonly buffer Skin { vec4 skin[]; };
 
 struct GroupParams {            // per strand group; std430, 48 bytes. Everything already per step (h folded in).

@@ -88,8 +88,20 @@ void main() {
       if (wsum == 0.0) continue;
       vec3 d = n.xyz - p.xyz;
       float len = length(d);
-      if (!(len > 0.0)) continue;
-      vec3 corr = ((len - rest_info[b + v].x) / (len * wsum)) * d;
+      float rest = rest_info[b + v].x;
+      vec3 corr;
+      if (len >= rest) {
+        corr = ((len - rest) / (len * wsum)) * d;
+      } else {
+        // Compressed: the segment is restored along its direction blended with its direction at the previous
+        // step by the missing length, which stays well defined as the segment collapses (normalize(d) would not).
+        vec3 was = prev[b + v + 1u].xyz - prev[b + v].xyz;
+        float wl = length(was);
+        vec3 dir = wl > kDirectionEps * rest ? d + (rest - len) * (was / wl) : d;
+        float dl = length(dir);
+        if (!(dl > 0.0)) continue;
+        corr = (d - (rest / dl) * dir) / wsum;
+      }
       if (wa > 0.0) pos[b + v] = vec4(p.xyz + wa * corr, p.w);
       if (wb > 0.0) pos[b + v + 1u] = vec4(n.xyz - wb * corr, n.w);
       // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),

@@ -20,7 +20,7 @@ void main() {
     for (uint v = 1u; v + 1u < N; ++v) {
       vec4 a = pos[b + v - 1u];
       vec4 p = pos[b + v];
-      if (rest_info[b + v].z != 0.0) f = frame_align(f, p.xyz - a.xyz, kDirectionEps * rest_info[b + v - 1u].x);
+      if (rest_info[b + v].z != 0.0) f = frame_align(f, p.xyz - a.xyz, rest_info[b + v - 1u].x);
       vec4 n = pos[b + v + 1u];
       vec3 target = p.xyz + quat_rotate(f, rest_edge_local[b + v].xyz);
       vec3 d = s * (target - n.xyz);

@@ -1,7 +1,7 @@
 // Pass 2, one thread per guide vertex (v >= 2, movable): velocity shock propagation. Each thread derives its
-// strand's root-edge rigid motion of this step itself (swing quaternion from the previous to the current root
-// edge, plus the root translation), so no strand-level pass or buffer is needed; then moves the vertex and its
-// previous position by coefficient * (rigid motion), which keeps the velocity relative to the root.
+// strand's root rigid motion of this step itself (the skinning rotation since the previous step about the root
+// vertex, plus the root vertex's translation), so no strand-level pass or buffer is needed; then moves the vertex
+// and its previous position by coefficient * (rigid motion), which keeps the velocity relative to the root.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "sim/common.glsl"
@@ -29,14 +29,10 @@ void main() {
   float ramp = clamp((accel - 0.75 * gp.vsp_threshold) / (0.25 * gp.vsp_threshold), 0.0, 1.0);
   float c = mix(gp.vsp_coefficient, 1.0, ramp);
 
-  vec4 swing = vec4(0, 0, 0, 1);
-  if ((guide_info[g].y & TVK_GUIDE_ROOT_SWING) != 0u) {
-    vec3 u = q1 - q0;
-    vec3 w = p1 - p0;
-    float min_len = kDirectionEps * rest_info[b].x;
-    float lu = length(u), lw = length(w);
-    if (lu > min_len && lw > min_len) swing = quat_from_two_unit(u / lu, w / lw);
-  }
+  // The rotation is the root's skinning rotation of this step (swing and twist, from double-precision poses);
+  // the translation follows from the root vertex's move. Deriving the rotation from the root edge instead would
+  // amplify float rounding of the pinned vertices by strand length / root edge length.
+  vec4 swing = skin_delta(g);
   // rigid(x) - x = (p0 - q0) + (swing * (x - q0) - (x - q0)), written without large cancellations.
   vec3 t = p0 - q0;
   vec3 y = prev[i].xyz;

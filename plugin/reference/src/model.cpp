@@ -49,7 +49,6 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
   m.rest_edge_local.assign(vcount, Vec3{});
   m.root_frame.resize(g_count);
   m.strand_length.assign(g_count, 0.0);
-  m.root_swing.assign(g_count, 0);
   m.group.assign(g_count, 0);
   m.bone_index.assign(g_count, {0, 0, 0, 0});
   m.bone_weight.assign(g_count, {1, 0, 0, 0});
@@ -70,7 +69,6 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
     for (uint32_t v = 0; v < n; ++v) m.arc_fraction[b + v] = total > 0 ? m.arc_fraction[b + v] / total : 0.0;
     m.strand_length[g] = total;
     const double mean_seg = total / (n - 1);
-    m.root_swing[g] = m.rest_length[b] >= kRootSwingMinRel * mean_seg && m.rest_length[b] > 0 ? 1 : 0;
 
     const auto& f = a.rest_frames[b];
     Quat frame = normalize(Quat{f[0], f[1], f[2], f[3]});
@@ -80,7 +78,7 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
       double e_out = m.rest_length[b + v];
       bool turns = e_in >= kFrameEdgeRatio * e_out && e_in >= kFrameEdgeMinRel * mean_seg && e_in > 0;
       m.frame_turns[b + v] = turns ? 1 : 0;
-      if (turns) frame = frame_align(frame, m.rest_pos[b + v] - m.rest_pos[b + v - 1], kDirectionEps * e_in);
+      if (turns) frame = frame_align(frame, m.rest_pos[b + v] - m.rest_pos[b + v - 1], e_in);
       if (v + 1 < n) m.rest_edge_local[b + v] = quat_rotate(conjugate(frame), m.rest_pos[b + v + 1] - m.rest_pos[b + v]);
     }
     m.rest_edge_local[b] = quat_rotate(conjugate(m.root_frame[g]), m.rest_pos[b + 1] - m.rest_pos[b]);
@@ -123,7 +121,7 @@ GpuStatic build_gpu_static(const ModelRest& m) {
     const Quat& q = m.root_frame[g];
     s.root_frames.push_back({static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z),
                              static_cast<float>(q.w)});
-    s.guide_info.push_back({m.group[g], m.root_swing[g] ? sim::kGuideRootSwing : 0u,
+    s.guide_info.push_back({m.group[g], 0u,
                             std::bit_cast<uint32_t>(static_cast<float>(m.strand_length[g])), 0u});
     if (m.bone_count > 0) {
       s.bone_indices.push_back(m.bone_index[g]);

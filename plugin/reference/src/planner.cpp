@@ -187,6 +187,8 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     // A reset step takes no time: it only places the state; the frame's whole steps follow.
     Substep st = make_step(now, bones_now, index++);
     st.reset = true;
+    last_rot_.clear();
+    for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
     plan.steps.push_back(st);
     pending_reset_ = false;
     pending_teleport_ = false;
@@ -217,6 +219,17 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
       pending_turn_ = Quat{};
     }
     st.move_state = dot(st.origin_shift, st.origin_shift) > 0.0 || st.teleport.w != 1.0;
+    // Each transform's rotation since the previous step, in the frame of the (possibly turned) state: VSP's
+    // rigid motion. From double-precision poses, so no float rounding of positions is amplified into it.
+    const bool have_last = last_rot_.size() == st.skin.size();
+    for (size_t i = 0; i < st.skin.size(); ++i) {
+      const Quat before = have_last ? quat_mul(st.teleport, last_rot_[i]) : st.skin[i].rotation;
+      Quat d = normalize(quat_mul(st.skin[i].rotation, conjugate(before)));
+      if (d.w < 0) d = {-d.x, -d.y, -d.z, -d.w};
+      st.skin[i].delta = d;
+    }
+    last_rot_.clear();
+    for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
     plan.steps.push_back(st);
     prev_pose = pose;
   }
@@ -289,6 +302,7 @@ GpuFrame to_gpu(const FramePlan& plan) {
                             static_cast<float>(t.rows[r][2]), static_cast<float>(t.rows[r][3])});
       }
       out.skin.push_back(f4(t.rotation));
+      out.skin.push_back(f4(t.delta));
     }
   }
   return out;

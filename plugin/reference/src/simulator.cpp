@@ -112,10 +112,24 @@ Quat Simulator::skin_rotation(const Substep& st, uint32_t g) const {
   return st.skin.front().rotation;
 }
 
+Quat Simulator::skin_delta(const Substep& st, uint32_t g) const {
+  if (st.skin.size() > 1) {
+    Quat q{0, 0, 0, 0};
+    for (size_t k = 0; k < 4; ++k) {
+      const double w = rest_.bone_weight[g][k];
+      if (w == 0.0) continue;
+      const Quat qi = st.skin[rest_.bone_index[g][k]].delta;
+      q = {q.x + w * qi.x, q.y + w * qi.y, q.z + w * qi.z, q.w + w * qi.w};
+    }
+    return normalize(q);
+  }
+  return st.skin.front().delta;
+}
+
 Quat Simulator::current_root_frame(const Substep& st, uint32_t g) const {
   const size_t b = size_t{g} * rest_.vertices_per_strand;
   Quat f = quat_mul(skin_rotation(st, g), rest_.root_frame[g]);
-  if (rest_.frame_turns[b + 1]) f = frame_align(f, pos_[b + 1] - pos_[b], kDirectionEps * rest_.rest_length[b]);
+  if (rest_.frame_turns[b + 1]) f = frame_align(f, pos_[b + 1] - pos_[b], rest_.rest_length[b]);
   return f;
 }
 
@@ -153,7 +167,7 @@ void Simulator::integrate(const Substep& st) {
   }
 }
 
-void Simulator::vsp(const Substep&) {
+void Simulator::vsp(const Substep& st) {
   const uint32_t n = rest_.vertices_per_strand;
   for (uint32_t g = 0; g < rest_.guide_count; ++g) {
     const GroupStep& gp = group_of(g);
@@ -165,13 +179,8 @@ void Simulator::vsp(const Substep&) {
     const double accel = length((p1 - q1) - (q1 - r1));
     const double ramp = std::clamp((accel - 0.75 * gp.vsp_threshold) / (0.25 * gp.vsp_threshold), 0.0, 1.0);
     const double c = gp.vsp_coefficient + ramp * (1.0 - gp.vsp_coefficient);
-    Quat swing;
-    if (rest_.root_swing[g]) {
-      const Vec3 u = q1 - q0, w = p1 - p0;
-      const double min_len = kDirectionEps * rest_.rest_length[b];
-      const double lu = length(u), lw = length(w);
-      if (lu > min_len && lw > min_len) swing = quat_from_two_unit(u / lu, w / lw);
-    }
+    // The root's skinning rotation of this step (see vsp.comp).
+    const Quat swing = skin_delta(st, g);
     const Vec3 t = p0 - q0;
     for (uint32_t v = 2; v < n; ++v) {
       const size_t i = b + v;
@@ -195,7 +204,7 @@ void Simulator::local_shape(const Substep& st) {
       Quat f = root;
       for (uint32_t v = 1; v + 1 < n; ++v) {
         if (rest_.frame_turns[b + v]) {
-          f = frame_align(f, pos_[b + v] - pos_[b + v - 1], kDirectionEps * rest_.rest_length[b + v - 1]);
+          f = frame_align(f, pos_[b + v] - pos_[b + v - 1], rest_.rest_length[b + v - 1]);
         }
         const Vec3 target = pos_[b + v] + quat_rotate(f, rest_.rest_edge_local[b + v]);
         const Vec3 d = s * (target - pos_[b + v + 1]);
@@ -272,8 +281,19 @@ void Simulator::length_and_collision(const Substep& st) {
         if (wsum == 0.0) continue;
         const Vec3 d = pos_[b + v + 1] - pos_[b + v];
         const double len = length(d);
-        if (!(len > 0.0)) continue;
-        const Vec3 corr = ((len - rest_.rest_length[b + v]) / (len * wsum)) * d;
+        const double rest = rest_.rest_length[b + v];
+        Vec3 corr;
+        if (len >= rest) {
+          corr = ((len - rest) / (len * wsum)) * d;
+        } else {
+          // Compressed: restored along its direction blended with the previous step's by the missing length.
+          const Vec3 was = prev_[b + v + 1] - prev_[b + v];
+          const double wl = length(was);
+          const Vec3 dir = wl > kDirectionEps * rest ? d + (rest - len) * (was / wl) : d;
+          const double dl = length(dir);
+          if (!(dl > 0.0)) continue;
+          corr = (d - (rest / dl) * dir) / wsum;
+        }
         if (wa > 0.0) pos_[b + v] += wa * corr;
         if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
         // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (the

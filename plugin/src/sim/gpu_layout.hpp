@@ -26,7 +26,7 @@ enum Binding : uint32_t {
   kBindingGuideInfo = 9,        // uvec4 x G, static
   kBindingBoneIndices = 10,     // uvec4 x G, static (a 16-byte dummy without bones)
   kBindingBoneWeights = 11,     // vec4 x G, static (a 16-byte dummy without bones)
-  kBindingSkin = 12,            // vec4 x 4 per (substep, bone), per frame
+  kBindingSkin = 12,            // vec4 x kSkinVec4PerBone per (substep, bone), per frame
   kBindingGroups = 13,          // GroupParams x groups, per frame
   kBindingSteps = 14,           // StepParams x substeps, per frame
   kBindingCounters = 15,        // uint per instance, read-write
@@ -50,11 +50,10 @@ enum Feature : uint32_t {
   kFeatureMaxSpeed = 16u,
 };
 
-inline constexpr uint32_t kGuideRootSwing = 1u;  // GuideInfo.y bit
 inline constexpr uint32_t kStepReset = 1u;       // StepParams::flags[0] bits
 inline constexpr uint32_t kStepMoveState = 2u;
 inline constexpr uint32_t kMaxCapsules = 8;
-inline constexpr uint32_t kSkinVec4PerBone = 4;  // 3 affine rows + rotation quaternion
+inline constexpr uint32_t kSkinVec4PerBone = 5;  // 3 affine rows, rotation, rotation since the last step
 
 struct GroupParams {
   float velocity_keep;

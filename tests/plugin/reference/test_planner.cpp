@@ -145,8 +145,8 @@ TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][plan
   FramePlan plan = planner.plan(f);
   GpuFrame gpu = to_gpu(plan);
   REQUIRE(gpu.steps.size() == plan.steps.size());
-  CHECK(gpu.skin_stride == 4);
-  CHECK(gpu.skin.size() == plan.steps.size() * 4);
+  CHECK(gpu.skin_stride == tressvk::sim::kSkinVec4PerBone);
+  CHECK(gpu.skin.size() == plan.steps.size() * tressvk::sim::kSkinVec4PerBone);
   CHECK(gpu.steps[0].flags[0] == tressvk::sim::kStepReset);
   CHECK(gpu.steps[1].flags[1] == 1u);
   CHECK(gpu.steps[1].gravity[1] == Catch::Approx(-9.81 / (120.0 * 120.0)).epsilon(1e-6));

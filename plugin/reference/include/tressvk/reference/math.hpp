@@ -63,12 +63,14 @@ inline Quat quat_from_two_unit(Vec3 a, Vec3 b) {
   }
   return normalize(make_quat(cross(a, b), 1.0 + d));
 }
-// Turns frame q minimally so that its local +X points along e; leaves it when e is not longer than min_len.
-inline Quat frame_align(Quat q, Vec3 e, double min_len) {
-  double len = length(e);
-  if (!(len > min_len)) return q;
-  Vec3 x = quat_rotate(q, Vec3{1, 0, 0});
-  return normalize(quat_mul(quat_from_two_unit(x, e / len), q));
+// Turns frame q minimally so that its local +X points along edge e (rest length rest_len); a compressed edge is
+// blended with the frame's +X by the missing length (see frame_align in common.glsl).
+inline Quat frame_align(Quat q, Vec3 e, double rest_len) {
+  const Vec3 x = quat_rotate(q, Vec3{1, 0, 0});
+  const Vec3 d = e + std::max(rest_len - length(e), 0.0) * x;
+  const double len = length(d);
+  if (!(len > 1e-4 * rest_len)) return q;  // kDirectionEps
+  return normalize(quat_mul(quat_from_two_unit(x, d / len), q));
 }
 inline Quat slerp(Quat a, Quat b, double t) {
   double d = dot(a, b);

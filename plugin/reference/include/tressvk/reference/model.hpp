@@ -3,8 +3,7 @@
 //
 // Beyond what the asset stores, the model decides per vertex whether the local-shape frame turns onto the edge
 // arriving at v (an edge much shorter than the one leaving v has an unreliable direction in float32, so the frame
-// is carried over it), and re-expresses each rest edge in the frame so defined; and per strand whether the root
-// edge is long enough for velocity shock propagation to take its swing from it.
+// is carried over it), and re-expresses each rest edge in the frame so defined.
 #pragma once
 
 #include <cstdint>
@@ -22,8 +21,6 @@ namespace tressvk::reference {
 // and at least kFrameEdgeMinRel of the strand's mean segment.
 inline constexpr double kFrameEdgeRatio = 0.2;
 inline constexpr double kFrameEdgeMinRel = 1e-3;
-// The root edge drives the VSP swing only if it is at least this fraction of the strand's mean segment.
-inline constexpr double kRootSwingMinRel = 0.25;
 // The share of the follow-the-leader move of a child that its parent receives back as velocity (DFTL, Mueller
 // et al. 2012, who recommend 0.9..1). GLSL twin: kFtlVelocityCorrection in common.glsl.
 inline constexpr double kFtlVelocityCorrection = 0.9;
@@ -48,7 +45,6 @@ struct ModelRest {
   // Per guide.
   std::vector<Quat> root_frame;
   std::vector<double> strand_length;
-  std::vector<uint8_t> root_swing; // 1 = VSP takes its swing from the root edge
   std::vector<uint32_t> group;
   std::vector<std::array<uint32_t, 4>> bone_index;
   std::vector<std::array<double, 4>> bone_weight;

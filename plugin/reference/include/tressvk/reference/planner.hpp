@@ -30,6 +30,7 @@ namespace tressvk::reference {
 struct SkinTransform {
   std::array<std::array<double, 4>, 3> rows{};
   Quat rotation;
+  Quat delta;  // rotation since the previous step (identity at a reset): the rigid motion VSP propagates
   Vec3 apply(Vec3 x) const {
     return {rows[0][0] * x.x + rows[0][1] * x.y + rows[0][2] * x.z + rows[0][3],
             rows[1][0] * x.x + rows[1][1] * x.y + rows[1][2] * x.z + rows[1][3],
@@ -94,6 +95,7 @@ class FramePlanner {
   Quat pending_turn_;
   Pose last_;                // instance pose at the last simulated step
   std::vector<Pose> last_bones_;
+  std::vector<Quat> last_rot_;  // skin rotations of the last planned step
 };
 
 // Per-group parameters converted to per-step values for step length h (what both sides use).
@@ -115,7 +117,7 @@ GroupStep to_group_step(const TvkSimParams& params, double h, double asset_tip_s
 // The conversions the host uploads: everything the shaders read per frame.
 struct GpuFrame {
   std::vector<sim::StepParams> steps;  // one per substep
-  std::vector<sim::Vec4> skin;         // steps * bones_per_step * 4 vec4 (substep s starts at s * skin_stride)
+  std::vector<sim::Vec4> skin;         // steps * bones_per_step * kSkinVec4PerBone (substep s at s * skin_stride)
   uint32_t skin_stride = 0;            // vec4 per substep
 };
 GpuFrame to_gpu(const FramePlan& plan);

@@ -63,6 +63,7 @@ class Simulator {
   const GroupStep& group_of(uint32_t guide) const { return steps_params_[rest_.group[guide]]; }
   void prepare_groups(double h);
   Quat skin_rotation(const Substep& step, uint32_t g) const;
+  Quat skin_delta(const Substep& step, uint32_t g) const;
   Quat current_root_frame(const Substep& step, uint32_t g) const;
 
   ModelRest rest_;
