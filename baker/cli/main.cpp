@@ -64,6 +64,9 @@ void progress(const CliState& s, const std::string& what) {
   if (wanted) std::cerr << "tressvk-bake: " << what << "...\n";
 }
 
+// Names in an asset are bytes; invalid UTF-8 is shown replaced rather than failing the whole output.
+std::string dump_json(const ordered_json& j) { return j.dump(2, ' ', false, ordered_json::error_handler_t::replace); }
+
 ordered_json sections_json(const asset::FileInfo& info) {
   ordered_json list = ordered_json::array();
   for (const auto& s : info.sections)
@@ -93,7 +96,9 @@ ordered_json asset_json(const asset::HairAsset& a, const asset::FileInfo& info) 
   j["origin"] = a.origin;
   j["root_uv"] = !a.root_uv.empty();
   j["bones"] = a.bone_names.size();
-  j["bake_settings"] = a.bake_settings.empty() ? ordered_json() : ordered_json::parse(a.bake_settings, nullptr, false);
+  // Informational: shown as an object when it parses, as the raw string otherwise (a hand-made asset).
+  ordered_json settings = ordered_json::parse(a.bake_settings, nullptr, false);
+  j["bake_settings"] = settings.is_discarded() ? ordered_json(a.bake_settings) : settings;
   j["file_size"] = info.file_size;
   j["sections"] = sections_json(info);
   j["checksums_ok"] = info.checksums_ok;
@@ -117,13 +122,13 @@ int run_info(const std::string& file, bool json) {
     j["sections"] = sections_json(r.info);
     j["checksums_ok"] = false;
     j["error"] = r.error;
-    if (json) std::cout << j.dump(2) << "\n";
+    if (json) std::cout << dump_json(j) << "\n";
     std::cerr << "tressvk-bake: error: " << r.error << "\n";
     return kExitInvalid;
   }
   const auto j = asset_json(r.asset, r.info);
   if (json) {
-    std::cout << j.dump(2) << "\n";
+    std::cout << dump_json(j) << "\n";
     return kExitOk;
   }
   std::cout << file << ": .tvkhair " << j["format_version"].get<std::string>() << ", " << j["file_size"] << " bytes\n"
@@ -238,7 +243,7 @@ int run_bake(CliState& s) {
     for (const auto& sec : info.sections) std::cout << "section " << sec.name << ": " << sec.size << " bytes\n";
   }
   if (!s.report.empty()) {
-    const std::string text = j.dump(2) + "\n";
+    const std::string text = dump_json(j) + "\n";
     const auto rerr = asset::write_file(s.report, std::as_bytes(std::span(text.data(), text.size())));
     if (!rerr.empty()) throw baker::IoError(rerr);
   }

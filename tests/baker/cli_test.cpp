@@ -111,6 +111,19 @@ TEST_CASE("CLI: info --json lists the documented keys", "[baker][cli]") {
   CHECK(run_bake("info " + quoted(out)) == 0);
 }
 
+TEST_CASE("CLI: info --json stays valid JSON for odd names and hand-made settings", "[baker][cli]") {
+  auto a = baker::bake(baker::import_obj_text(kSmallObj, "odd.obj"), {});
+  a.groups[0].name = "caf\xE9 \xFF";  // Latin-1 bytes, not UTF-8
+  a.bake_settings = "made by hand";
+  const auto path = tvk_test::temp_dir() / "odd.tvkhair";
+  REQUIRE(asset::write_file(path, a).empty());
+  const auto json_path = tvk_test::temp_dir() / "odd.json";
+  REQUIRE(run_bake("info " + quoted(path) + " --json > " + quoted(json_path), false) == 0);
+  const auto j = nlohmann::json::parse(slurp(json_path));
+  CHECK(j["bake_settings"] == "made by hand");
+  CHECK(j["groups"].size() == 2);
+}
+
 TEST_CASE("CLI: --report writes the bake statistics", "[baker][cli]") {
   const auto obj = tvk_test::write_text("report.obj", kSmallObj + "v 5 0 0\nv 5 0.0000001 0\nl 13 14\n");
   const auto out = tvk_test::temp_dir() / "report.tvkhair";
