@@ -1,6 +1,7 @@
 #include <tressvk/engine/messenger.hpp>
 
 #include <cstdio>
+#include <cstring>
 
 namespace tressvk::engine {
 
@@ -24,12 +25,14 @@ const char* severity_name(VkDebugUtilsMessageSeverityFlagBitsEXT severity) {
 
 }  // namespace
 
-bool counts_as_validation(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types) {
+bool counts_as_validation(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+                          const char* id_name) {
   const bool serious = (severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                                     VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)) != 0;
-  const bool from_validation = (types & (VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                                         VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT)) != 0;
-  return serious && from_validation;
+  const bool specific = (types & (VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                  VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT)) != 0;
+  const bool from_loader = !specific && id_name && std::strcmp(id_name, "Loader Message") == 0;
+  return serious && !from_loader;
 }
 
 std::string format_message(const ValidationMessage& message) {
@@ -88,7 +91,7 @@ void MessageLog::receive(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebu
     if (data->pMessageIdName) message.id_name = data->pMessageIdName;
     if (data->pMessage) message.text = data->pMessage;
   }
-  if (!counts_as_validation(severity, types)) {
+  if (!counts_as_validation(severity, types, data ? data->pMessageIdName : nullptr)) {
     if (print_ && (severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                                VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)))
       std::fprintf(stderr, "%s\n", format_message(message).c_str());

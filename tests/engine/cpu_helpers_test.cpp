@@ -65,16 +65,17 @@ TEST_CASE("timestamp deltas honour the period and wrap at the valid bits", "[eng
   CHECK(timestamp_delta_ms(top, 5, 1e6, 36) == Catch::Approx(15.0));
 }
 
-TEST_CASE("only validation-layer warnings and errors count as validation messages", "[engine]") {
-  using S = VkDebugUtilsMessageSeverityFlagBitsEXT;
+TEST_CASE("warnings and errors count as validation messages, except the loader's own", "[engine]") {
   constexpr auto kValidation = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
-  CHECK(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT, kValidation));
-  CHECK(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT, kValidation));
+  constexpr auto kGeneral = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
+  CHECK(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT, kValidation, "VUID-x"));
+  CHECK(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT, kValidation, nullptr));
   CHECK(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT,
-                             VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT));
-  CHECK_FALSE(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT, kValidation));
-  CHECK_FALSE(counts_as_validation(S(VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT),
-                                   VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT));
+                             VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT, "UNASSIGNED-perf"));
+  // A GENERAL warning from the layer (settings, for example) counts; the loader's does not.
+  CHECK(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT, kGeneral, "UNASSIGNED-settings"));
+  CHECK_FALSE(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT, kGeneral, "Loader Message"));
+  CHECK_FALSE(counts_as_validation(VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT, kValidation, "VUID-x"));
 }
 
 TEST_CASE("the message log counts, keeps and hands messages to its hook", "[engine]") {

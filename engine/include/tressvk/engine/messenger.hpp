@@ -1,8 +1,8 @@
 // VK_EXT_debug_utils messenger that counts and prints every validation message.
 //
-// Counting rule: a message counts when it comes from the validation layer (type VALIDATION or PERFORMANCE) with
-// severity WARNING or ERROR. GENERAL messages (the loader's chatter about drivers it could not load, for
-// example) are printed when they are warnings or errors but not counted: they say nothing about our API use.
+// Counting rule: every WARNING or ERROR counts, except the Vulkan loader's own GENERAL messages (id name
+// "Loader Message": drivers it could not load and the like), which are printed but say nothing about our use of
+// the API. INFO and VERBOSE messages are not requested.
 #pragma once
 
 #include <volk.h>
@@ -23,8 +23,9 @@ struct ValidationMessage {
   std::string text;     // the full message
 };
 
-// Whether a message of this severity and type counts as a validation message (see the rule above).
-bool counts_as_validation(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types);
+// Whether a message counts as a validation message (see the rule above).
+bool counts_as_validation(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+                          const char* id_name);
 
 // Formats a message for a log: "[validation error] VUID-...: text".
 std::string format_message(const ValidationMessage& message);
