@@ -30,14 +30,18 @@ inline fs::path data_dir() {
   const auto dir = ::tvk_test::data_dir();                                                            \
   if (dir.empty()) SKIP("real hair data not found: set TRESSVK_DATA_DIR to the shared/data directory")
 
-// A fresh directory per test process.
+// A fresh directory per test process, removed when the process ends.
 inline fs::path temp_dir() {
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("tressvk-baker-test-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
+  struct Dir {
+    fs::path path = fs::temp_directory_path() / ("tressvk-baker-test-" + std::to_string(::getpid()));
+    Dir() { fs::create_directories(path); }
+    ~Dir() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
 }
 
 inline fs::path write_text(const std::string& name, const std::string& text) {
