@@ -248,4 +248,7 @@ TVK_API uint32_t tressvk_get_pass_timings(TvkContext context, TvkPassTiming* tim
 }
 #endif
 
+/* The rendering half of the interface (hair shadow and shading passes). */
+#include "tressvk/render.h"
+
 #endif /* TRESSVK_TRESSVK_H */

@@ -1,0 +1,56 @@
+// Internal state of a TvkRenderer: pipelines built on first use per pass variant, descriptor set layouts, and a
+// per-frame ring of constant blocks and descriptor pools (slot = context frame % frames_in_flight).
+#pragma once
+
+#include "context.hpp"
+#include "gpu.hpp"
+#include "render_constants.hpp"
+
+#include <tressvk/render.h>
+
+#include <array>
+#include <vector>
+
+namespace tressvk::render {
+
+// The pipelines a renderer may need; each is created when a draw first asks for it.
+enum class PipelineKind : uint32_t {
+  shadow = 0,             // depth only, light-facing quads
+  core = 1,               // opaque core of the shading pass (depth written)
+  fringe = 2,             // blended partial coverage (depth tested, not written)
+  core_shadowed = 3,
+  fringe_shadowed = 4,
+  count = 5
+};
+
+}  // namespace tressvk::render
+
+struct TvkRenderer_T {
+  tressvk::Context* ctx = nullptr;
+  TvkRendererCreateInfo info{};
+  uint32_t max_draws = 64;
+  VkDeviceSize block_stride = 0;  // DrawConstants rounded up to minUniformBufferOffsetAlignment
+
+  // Set 0: bindings 0 (constants), 1 positions, 2 tangents, 3 guide info; the shadowed layout adds 4 (shadow map).
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout shadowed_set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;
+  VkPipelineLayout shadowed_pipeline_layout = VK_NULL_HANDLE;
+  std::array<VkPipeline, static_cast<size_t>(tressvk::render::PipelineKind::count)> pipelines{};
+
+  // Per frame in flight: a slice of the constant ring and a descriptor pool, both reset when the slot is reused.
+  tressvk::GpuBuffer ring;
+  std::vector<VkDescriptorPool> pools;
+  uint64_t current_frame = ~0ull;
+  uint32_t slot = 0;
+  uint32_t draws_in_frame = 0;
+  uint32_t last_drawn_strands = 0;
+
+  void destroy();
+};
+
+namespace tressvk::render {
+
+TvkResult create_pipeline(TvkRenderer_T& r, PipelineKind kind);
+
+}  // namespace tressvk::render
