@@ -8,6 +8,8 @@
 
 // Relative thresholds (all lengths are compared with a rest length, never with a constant in metres).
 const float kDirectionEps = 1e-4;  // an edge shorter than this fraction of its rest length has no direction
+const float kCollapse = 1.0;      // an edge shorter than this fraction of its rest length counts as collapsed
+const float kContactBand = 0.02;  // capsule contacts this deep (fraction of the radius) lose all inward velocity
 const float kFtlVelocityCorrection = 0.9;  // DFTL: share of a child's follow-the-leader move its parent gets back
 
 vec4 quat_mul(vec4 a, vec4 b) {
@@ -36,13 +38,13 @@ vec4 quat_from_two_unit(vec3 a, vec3 b) {
   return normalize(vec4(cross(a, b), 1.0 + d));
 }
 
-// Turns frame q minimally so that its local +X points along edge e (rest length rest_len). A compressed edge
-// is blended with the frame's current +X by the missing length, so that its direction stays well defined as it
-// collapses (a bare normalize(e) would turn float rounding into arbitrary directions); at or above rest length
-// it is e's own direction.
+// Turns frame q minimally so that its local +X points along edge e (rest length rest_len). An edge collapsed
+// below kCollapse of its rest length is blended with the frame's current +X by the missing part, so that its
+// direction stays defined as it vanishes (a bare normalize(e) turns float rounding into arbitrary directions);
+// above that it is e's own direction, so ordinary compression keeps the plain, best-conditioned form.
 vec4 frame_align(vec4 q, vec3 e, float rest_len) {
   vec3 x = quat_rotate(q, vec3(1, 0, 0));
-  vec3 d = e + max(rest_len - length(e), 0.0) * x;
+  vec3 d = e + max(kCollapse * rest_len - length(e), 0.0) * x;
   float len = length(d);
   if (!(len > kDirectionEps * rest_len)) return q;
   return normalize(quat_mul(quat_from_two_unit(x, d / len), q));

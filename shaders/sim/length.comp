@@ -62,10 +62,12 @@ void main() {
           float bl = length(back);
           nrm = bl > kDirectionEps * radius ? back / bl : vec3(0, 1, 0);
         }
+        // Remove only velocity into the surface (tangential motion slides on), fully once the vertex was deeper
+        // than kContactBand * radius and in proportion below that, so the response is continuous in the state.
+        float depth = radius - dist;
         x = centre + radius * nrm;
-        // Remove only the velocity into the surface: tangential motion slides on.
         float vn = dot(x - y, nrm);
-        if (vn < 0.0) y += vn * nrm;
+        if (vn < 0.0) y += min(depth / (kContactBand * radius), 1.0) * vn * nrm;
         hit = true;
       }
       if (hit) {
@@ -89,19 +91,17 @@ void main() {
       vec3 d = n.xyz - p.xyz;
       float len = length(d);
       float rest = rest_info[b + v].x;
-      vec3 corr;
-      if (len >= rest) {
-        corr = ((len - rest) / (len * wsum)) * d;
-      } else {
-        // Compressed: the segment is restored along its direction blended with its direction at the previous
-        // step by the missing length, which stays well defined as the segment collapses (normalize(d) would not).
+      vec3 dir = d;
+      if (len < kCollapse * rest) {
+        // Collapsed: restored along its direction blended with its direction at the previous step by the missing
+        // part, which stays defined as the segment vanishes (normalize(d) would not).
         vec3 was = prev[b + v + 1u].xyz - prev[b + v].xyz;
         float wl = length(was);
-        vec3 dir = wl > kDirectionEps * rest ? d + (rest - len) * (was / wl) : d;
-        float dl = length(dir);
-        if (!(dl > 0.0)) continue;
-        corr = (d - (rest / dl) * dir) / wsum;
+        if (wl > kDirectionEps * rest) dir = d + (kCollapse * rest - len) * (was / wl);
       }
+      float dl = length(dir);
+      if (!(dl > 0.0)) continue;
+      vec3 corr = (d - (rest / dl) * dir) / wsum;
       if (wa > 0.0) pos[b + v] = vec4(p.xyz + wa * corr, p.w);
       if (wb > 0.0) pos[b + v + 1u] = vec4(n.xyz - wb * corr, n.w);
       // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),

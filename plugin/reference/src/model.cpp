@@ -68,21 +68,6 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
     m.arc_fraction[b + n - 1] = total;
     for (uint32_t v = 0; v < n; ++v) m.arc_fraction[b + v] = total > 0 ? m.arc_fraction[b + v] / total : 0.0;
     m.strand_length[g] = total;
-    const double mean_seg = total / (n - 1);
-
-    const auto& f = a.rest_frames[b];
-    Quat frame = normalize(Quat{f[0], f[1], f[2], f[3]});
-    m.root_frame[g] = frame;
-    for (uint32_t v = 1; v < n; ++v) {
-      double e_in = m.rest_length[b + v - 1];
-      double e_out = m.rest_length[b + v];
-      bool turns = e_in >= kFrameEdgeRatio * e_out && e_in >= kFrameEdgeMinRel * mean_seg && e_in > 0;
-      m.frame_turns[b + v] = turns ? 1 : 0;
-      if (turns) frame = frame_align(frame, m.rest_pos[b + v] - m.rest_pos[b + v - 1], e_in);
-      if (v + 1 < n) m.rest_edge_local[b + v] = quat_rotate(conjugate(frame), m.rest_pos[b + v + 1] - m.rest_pos[b + v]);
-    }
-    m.rest_edge_local[b] = quat_rotate(conjugate(m.root_frame[g]), m.rest_pos[b + 1] - m.rest_pos[b]);
-
     if (!a.guide_group.empty()) {
       m.group[g] = a.guide_group[g];
       require(m.group[g] < m.group_count, "guide_group[" + std::to_string(g) + "] names no group");
@@ -100,8 +85,51 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
       require(sum > 0, "bone_weights[" + std::to_string(g) + "] are all zero");
     }
   }
+  // Strands far shorter than the groom's typical strand are carried rigidly by the skinning (every vertex pinned):
+  // a few millimetres of hair resolved into N vertices has segments of tens of micrometres, whose dynamics at
+  // any practical step are chaotic noise and invisible anyway.
+  const double median = median_strand_length(m);
+  for (uint32_t g = 0; g < g_count; ++g) {
+    if (m.strand_length[g] < kRigidStrandRel * median) {
+      m.rigid_strands++;
+      for (uint32_t v = 0; v < n; ++v) m.inv_mass[size_t{g} * n + v] = 0.0;
+    }
+  }
+  for (uint32_t g = 0; g < g_count; ++g) {
+    const size_t b = size_t{g} * n;
+    const double mean_seg = m.strand_length[g] / (n - 1);
+    const auto& f = a.rest_frames[b];
+    Quat frame = normalize(Quat{f[0], f[1], f[2], f[3]});
+    m.root_frame[g] = frame;
+    for (uint32_t v = 1; v < n; ++v) {
+      const double e_in = m.rest_length[b + v - 1];
+      const double e_out = m.rest_length[b + v];
+      // An edge between two pinned vertices moves with the skinning, which already turns the frame exactly;
+      // re-aligning to it would only add its float rounding, amplified by the lever arm.
+      const bool pinned_edge = m.inv_mass[b + v - 1] == 0.0 && m.inv_mass[b + v] == 0.0;
+      const bool turns = !pinned_edge && e_in >= kFrameEdgeRatio * e_out && e_in >= kFrameEdgeMinRel * mean_seg && e_in > 0;
+      m.frame_turns[b + v] = turns ? 1 : 0;
+      if (turns) frame = frame_align(frame, m.rest_pos[b + v] - m.rest_pos[b + v - 1], e_in);
+      if (v + 1 < n) m.rest_edge_local[b + v] = quat_rotate(conjugate(frame), m.rest_pos[b + v + 1] - m.rest_pos[b + v]);
+    }
+    m.rest_edge_local[b] = quat_rotate(conjugate(m.root_frame[g]), m.rest_pos[b + 1] - m.rest_pos[b]);
+  }
   m.follow_offset.resize(a.follow_offsets.size());
   for (size_t i = 0; i < a.follow_offsets.size(); ++i) m.follow_offset[i] = widen(a.follow_offsets[i]);
+  m.follow_length.assign(m.follow_offset.size(), 0.0);
+  for (uint32_t g = 0; g < g_count; ++g) {
+    const size_t b = size_t{g} * n;
+    for (uint32_t f = 0; f < m.follow_per_guide; ++f) {
+      const Vec3 off = quat_rotate(m.root_frame[g], m.follow_offset[size_t{g} * m.follow_per_guide + f]);
+      double total = 0;
+      for (uint32_t v = 0; v + 1 < n; ++v) {
+        const double s0 = 1.0 + m.asset_tip_separation * v / (n - 1);
+        const double s1 = 1.0 + m.asset_tip_separation * (v + 1) / (n - 1);
+        total += length((m.rest_pos[b + v + 1] + s1 * off) - (m.rest_pos[b + v] + s0 * off));
+      }
+      m.follow_length[size_t{g} * m.follow_per_guide + f] = total;
+    }
+  }
   return m;
 }
 

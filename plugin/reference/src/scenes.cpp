@@ -104,8 +104,41 @@ SceneGeometry scene_geometry(const ModelRest& rest) {
       double dev = 0;
       for (const Vec3& p : roots) dev += std::abs(length(p - mean - c) - r);
       dev /= static_cast<double>(roots.size());
-      if (r > 0.3 * half_diag && r < 3.0 * half_diag && dev < 0.1 * r) {
+      // Only a clean sphere that the roots cover broadly (a scalp, not a strip on a big arc).
+      if (dev < 0.02 * r && r < 1.2 * half_diag && r > 0.3 * half_diag) {
         geo.head_centre = origin + mean + c;
+        geo.head_radius = r;
+        fitted = true;
+      }
+    }
+  }
+  if (!fitted) {
+    // The point nearest (least squares) to the lines through each root along its root edge: where the hair
+    // directions converge, i.e. inside the head or body the roots sit on.
+    std::array<std::array<double, 5>, 4> a{};
+    a[3][3] = 1.0;  // a 3x3 system embedded in the 4x4 solver
+    for (uint32_t g = 0; g < rest.guide_count; ++g) {
+      const Vec3 r = rest.rest_pos[size_t{g} * n];
+      const Vec3 e = rest.rest_pos[size_t{g} * n + 1] - r;
+      const double l = length(e);
+      if (!(l > 0)) continue;
+      const Vec3 d = e / l;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          const double proj = (i == j ? 1.0 : 0.0) - d[i] * d[j];
+          a[static_cast<size_t>(i)][static_cast<size_t>(j)] += proj;
+          a[static_cast<size_t>(i)][4] += proj * r[j];
+        }
+      }
+    }
+    std::array<double, 4> x{};
+    if (solve4(a, x)) {
+      const Vec3 c{x[0], x[1], x[2]};
+      double r = 0;
+      for (const Vec3& p : roots) r += length(p - c);
+      r /= static_cast<double>(roots.size());
+      if (r > 0.1 * half_diag && r < 3.0 * half_diag) {
+        geo.head_centre = origin + c;
         geo.head_radius = r;
         fitted = true;
       }
@@ -116,6 +149,12 @@ SceneGeometry scene_geometry(const ModelRest& rest) {
     geo.head_centre = origin + mean - Vec3{0, radius, 0};
     geo.head_radius = radius;
   }
+  // The head collider sits inside the scalp: 90% of the distance of the nearest tenth of the roots.
+  std::vector<double> dist;
+  for (const Vec3& p : roots) dist.push_back(length(origin + p - geo.head_centre));
+  auto tenth = dist.begin() + static_cast<std::ptrdiff_t>(dist.size() / 10);
+  std::nth_element(dist.begin(), tenth, dist.end());
+  geo.inner_radius = 0.9 * *tenth;
   return geo;
 }
 
@@ -141,7 +180,7 @@ TvkSimFrame scene_frame(std::string_view name, uint32_t frame_index, const Scene
     f.transform = pose_about(geo, nod, Vec3{0, 0.04 * std::sin(phase), 3.0 * t});
     const Vec3 c = geo.head_centre;
     f.capsule_count = 2;
-    set_capsule(f.capsules[0], c - 0.25 * r * up, 0.95 * r, c, 0.95 * r);
+    set_capsule(f.capsules[0], c - 0.25 * r * up, geo.inner_radius, c, geo.inner_radius);
     set_capsule(f.capsules[1], c + Vec3{-3.0 * r, -2.8 * r, 0}, 0.6 * r, c + Vec3{3.0 * r, -2.8 * r, 0}, 0.6 * r);
   } else if (name == "teleport") {
     const uint32_t k = frame_index / 60;

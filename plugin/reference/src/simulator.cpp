@@ -261,9 +261,10 @@ void Simulator::length_and_collision(const Substep& st) {
           const double bl = length(back);
           nrm = bl > kDirectionEps * radius ? back / bl : Vec3{0, 1, 0};
         }
+        const double depth = radius - dist;
         x = centre + radius * nrm;
         const double vn = dot(x - y, nrm);
-        if (vn < 0.0) y += vn * nrm;
+        if (vn < 0.0) y += std::min(depth / (kContactBand * radius), 1.0) * vn * nrm;
         hit = true;
       }
       if (hit) {
@@ -282,18 +283,16 @@ void Simulator::length_and_collision(const Substep& st) {
         const Vec3 d = pos_[b + v + 1] - pos_[b + v];
         const double len = length(d);
         const double rest = rest_.rest_length[b + v];
-        Vec3 corr;
-        if (len >= rest) {
-          corr = ((len - rest) / (len * wsum)) * d;
-        } else {
-          // Compressed: restored along its direction blended with the previous step's by the missing length.
+        Vec3 dir = d;
+        if (len < kCollapse * rest) {
+          // Collapsed: restored along its direction blended with the previous step's (see length.comp).
           const Vec3 was = prev_[b + v + 1] - prev_[b + v];
           const double wl = length(was);
-          const Vec3 dir = wl > kDirectionEps * rest ? d + (rest - len) * (was / wl) : d;
-          const double dl = length(dir);
-          if (!(dl > 0.0)) continue;
-          corr = (d - (rest / dl) * dir) / wsum;
+          if (wl > kDirectionEps * rest) dir = d + (kCollapse * rest - len) * (was / wl);
         }
+        const double dl = length(dir);
+        if (!(dl > 0.0)) continue;
+        const Vec3 corr = (d - (rest / dl) * dir) / wsum;
         if (wa > 0.0) pos_[b + v] += wa * corr;
         if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
         // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (the

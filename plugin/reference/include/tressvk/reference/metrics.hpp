@@ -79,7 +79,8 @@ struct HealthStats {
   uint32_t exploded_strands = 0;  // strands with a vertex farther than 1.5 strand lengths from their root
 };
 
-// Over every strand present in pos (guides, then follow layers; follows use their guide's length).
+// Over every strand present in pos (guides, then follow layers; a follow is measured against its own rest
+// length, which tip separation makes longer than its guide's).
 template <class A>
 HealthStats health(std::span<const A> pos, const ModelRest& rest) {
   HealthStats h;
@@ -87,12 +88,16 @@ HealthStats health(std::span<const A> pos, const ModelRest& rest) {
   const size_t strands = pos.size() / n;
   for (size_t s = 0; s < strands; ++s) {
     const uint32_t g = static_cast<uint32_t>(s % rest.guide_count);
+    const size_t layer = s / rest.guide_count;
+    const double len = layer == 0 || rest.follow_length.empty()
+                           ? rest.strand_length[g]
+                           : rest.follow_length[size_t{g} * rest.follow_per_guide + (layer - 1)];
     const Vec3 root = as_vec3(pos[s * n]);
     bool bad = false, far = false;
     for (uint32_t v = 0; v < n; ++v) {
       const Vec3 p = as_vec3(pos[s * n + v]);
       if (!is_finite(p)) bad = true;
-      else if (length(p - root) > 1.5 * rest.strand_length[g]) far = true;
+      else if (length(p - root) > 1.5 * len) far = true;
     }
     if (bad) ++h.nan_strands;
     else if (far) ++h.exploded_strands;

@@ -3,7 +3,8 @@
 //
 // Beyond what the asset stores, the model decides per vertex whether the local-shape frame turns onto the edge
 // arriving at v (an edge much shorter than the one leaving v has an unreliable direction in float32, so the frame
-// is carried over it), and re-expresses each rest edge in the frame so defined.
+// is carried over it), and re-expresses each rest edge in the frame so defined; and it pins whole strands that
+// are tiny compared with the groom (kRigidStrandRel).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,14 @@ inline constexpr double kFrameEdgeMinRel = 1e-3;
 // The share of the follow-the-leader move of a child that its parent receives back as velocity (DFTL, Mueller
 // et al. 2012, who recommend 0.9..1). GLSL twin: kFtlVelocityCorrection in common.glsl.
 inline constexpr double kFtlVelocityCorrection = 0.9;
+// Capsule contacts deeper than this fraction of the radius lose all their inward velocity; shallower ones in
+// proportion (a continuous response). GLSL twin: kContactBand.
+inline constexpr double kContactBand = 0.02;
+// An edge shorter than this fraction of its rest length counts as collapsed: its direction is blended with its
+// previous one (length constraints) or the frame's axis (local shape). GLSL twin: kCollapse.
+inline constexpr double kCollapse = 1.0;
+// Strands shorter than this fraction of the groom's median strand length are carried rigidly (all pinned).
+inline constexpr double kRigidStrandRel = 0.1;
 // GLSL twin: kDirectionEps in common.glsl.
 inline constexpr double kDirectionEps = 1e-4;
 
@@ -50,7 +59,9 @@ struct ModelRest {
   std::vector<std::array<double, 4>> bone_weight;
   // Per follow (G*K).
   std::vector<Vec3> follow_offset;
+  std::vector<double> follow_length;  // rest arc length of the follow (asset tip separation), for health metrics
   uint32_t group_count = 1;
+  uint32_t rigid_strands = 0;  // strands pinned whole because they are shorter than kRigidStrandRel x median
 };
 
 // Throws std::invalid_argument naming the field when the asset is inconsistent.

@@ -5,7 +5,7 @@
 //   settle    static head, gravity only
 //   shake     head turning +-60 degrees about the vertical at 2 Hz (about the head centre)
 //   run       running forward at 3 m/s, head bobbing 4 cm at 2.8 Hz and nodding 8 degrees; capsules for the
-//             head and the shoulders
+//             head (inside the scalp) and the shoulders
 //   teleport  static, and every 60 frames a jump of 1 m and 90 degrees in one frame (flagged as a teleport)
 //   wind      static head in gusty wind (4 m/s^2, gusts +-80% at 0.5 Hz)
 //   hitch     head turning +-60 degrees at 0.7 Hz while walking at 1.5 m/s, frame times alternating 1/60 s and 0.25 s
@@ -26,10 +26,11 @@ namespace tressvk::reference {
 struct SceneGeometry {
   Vec3 head_centre;        // instance space
   double head_radius = 0;  // m
+  double inner_radius = 0; // m, the head collider's radius: inside the scalp (90% of the 10th-percentile root distance)
 };
 
-// A sphere fitted to the root positions (least squares), falling back to one under the roots' bounding box
-// when the roots do not determine a sphere (e.g. a narrow strip such as a mohawk).
+// A sphere fitted to the root positions when they cover one cleanly (a scalp); otherwise (e.g. a mohawk strip)
+// the point where the root directions converge, with the mean root distance as radius.
 SceneGeometry scene_geometry(const ModelRest& rest);
 
 std::vector<std::string> scene_names();
