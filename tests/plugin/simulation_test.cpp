@@ -234,7 +234,11 @@ TEST_CASE("a strand that goes non-finite is reset and counted, and nothing else 
     reference::Simulator ref(hair, params, settings);
     const auto geometry = reference::scene_geometry(ref.rest());
     const uint32_t n = hair.vertices_per_strand;
-    for (uint32_t f = 0; f < 10; ++f) gpu.run_frame(reference::scene_frame("settle", f, geometry));
+    for (uint32_t f = 0; f < 10; ++f) {
+      const TvkSimFrame frame = reference::scene_frame("settle", f, geometry);
+      ref.advance(frame);  // keeps the reference's planner (first-frame reset, accumulator) in step with the GPU
+      gpu.run_frame(frame);
+    }
     CHECK(gpu.stats().nonfinite_strand_resets == 0);
     const size_t poisoned = size_t{3} * n + n / 2;  // guide 3, mid-strand
     gpu.poke_position(poisoned, {NAN, NAN, NAN, 1.0f});
@@ -267,12 +271,24 @@ TEST_CASE("without gravity the rest pose is a fixed point on the GPU", "[plugin]
     const auto geometry = reference::scene_geometry(ref.rest());
     gpu.run_frame(reference::scene_frame("settle", 0, geometry));
     const auto first = gpu.state().pos;
-    for (uint32_t f = 1; f < 60; ++f) gpu.run_frame(reference::scene_frame("settle", f, geometry));
+    std::vector<sim::Vec4> before_last;
+    for (uint32_t f = 1; f < 60; ++f) {
+      if (f == 59) before_last = gpu.state().pos;
+      gpu.run_frame(reference::scene_frame("settle", f, geometry));
+    }
+    const double m = ref.median_strand_length();
     const auto drift = reference::position_error(std::span<const sim::Vec4>(first),
-                                                 std::span<const sim::Vec4>(gpu.state().pos), ref.median_strand_length());
-    INFO("drift after 1 s: " << drift.max_rel);
-    // float32 rounding of one step is ~1e-7 of a strand; a second of steps must not accumulate past 1e-6.
-    CHECK(drift.max_rel <= 1e-6);
+                                                 std::span<const sim::Vec4>(gpu.state().pos), m);
+    const auto flicker = reference::position_error(std::span<const sim::Vec4>(before_last),
+                                                   std::span<const sim::Vec4>(gpu.state().pos), m);
+    INFO("drift after 1 s: " << drift.max_rel << ", motion in the last frame: " << flicker.max_rel);
+    // In double the rest pose is exact (the reference tests hold it to 1e-12). In float32 each step rounds a
+    // groom-sized coordinate by ~1e-7 of a strand and the constraints re-project it, so a second (120 steps) may
+    // wander by at most ~120 such roundings: 1e-5. Frame-to-frame motion at rest is flicker; the visual tolerance
+    // for flicker is 1e-4 of the strand per frame (docs/simulation.md, after the accuracy notes), and float32
+    // rounding re-projected by the constraints must stay ten times below it.
+    CHECK(drift.max_rel <= 1e-5);
+    CHECK(flicker.max_rel <= 1e-5);
   }
   tressvk_destroy_asset(a);
 }
