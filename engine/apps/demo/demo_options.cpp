@@ -2,11 +2,25 @@
 
 #include <CLI/CLI.hpp>
 
+#include <map>
+
 namespace tressvk::demo {
 
+const char* animation_name(Animation a) {
+  switch (a) {
+    case Animation::none: return "none";
+    case Animation::turn: return "turn";
+    case Animation::shake: return "shake";
+    case Animation::run: return "run";
+  }
+  return "?";
+}
+
 int parse_options(int argc, char** argv, Options& options) {
-  CLI::App app{"tressvk-demo: renders frames offscreen with the TressVK plugin and writes them as PNG files"};
-  app.add_option("--frames", options.frames, "Number of frames to render")->check(CLI::Range(1u, 100000u));
+  CLI::App app{"tressvk-demo: renders a head of simulated hair offscreen with the TressVK plugin and writes the "
+               "frames as PNG files"};
+  app.add_option("--frames", options.frames, "Number of frames to render (60 per simulated second)")
+      ->check(CLI::Range(1u, 100000u));
   app.add_option("--out", options.out_dir, "Output directory for frame_NNNN.png")->capture_default_str();
   app.add_option("--width", options.width, "Frame width in pixels")->check(CLI::Range(16u, 8192u))
       ->capture_default_str();
@@ -17,11 +31,36 @@ int parse_options(int argc, char** argv, Options& options) {
   app.add_flag("--validation", options.validation,
                "Enable the Vulkan validation layer with synchronization validation; any message fails the run");
   app.add_flag("--list-devices", options.list_devices, "List the Vulkan devices and exit");
+  app.add_option("--asset", options.asset, "A baked .tvkhair asset (default: the bundled procedural groom)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--mesh", options.mesh, "An OBJ head or character mesh in metres, in the asset's space")
+      ->check(CLI::ExistingFile);
+  const std::map<std::string, Animation> animations{
+      {"none", Animation::none}, {"turn", Animation::turn}, {"shake", Animation::shake}, {"run", Animation::run}};
+  app.add_option("--animate", options.animate, "Head motion: none, turn, shake or run")
+      ->transform(CLI::CheckedTransformer(animations, CLI::ignore_case))
+      ->default_str("turn");
+  app.add_option("--wind", options.wind, "Wind strength in m/s^2 (0 = none)")->check(CLI::Range(0.0f, 1000.0f));
+  bool no_shadows = false;
+  app.add_flag("--no-shadows", no_shadows, "Render without the shadow map (no hair or mesh shadows)");
+  app.add_option("--camera-distance", options.camera_distance, "Camera distance in metres (0 = frame the scene)")
+      ->check(CLI::Range(0.0f, 100000.0f));
+  app.add_option("--lod-start", options.lod_start, "Hair LOD: distance in metres where thinning starts (0 = off)")
+      ->check(CLI::Range(0.0f, 100000.0f));
+  app.add_option("--lod-end", options.lod_end, "Hair LOD: distance in metres of the fewest strands")
+      ->check(CLI::Range(0.0f, 100000.0f));
+  app.add_option("--lod-min-fraction", options.lod_min_fraction, "Hair LOD: fraction of strands drawn at --lod-end")
+      ->check(CLI::Range(0.01f, 1.0f))->capture_default_str();
+  app.add_option("--guides", options.guides, "Bundled groom: guide strands")->check(CLI::Range(16u, 100000u))
+      ->capture_default_str();
+  app.add_option("--follows", options.follows, "Bundled groom: follow strands per guide")
+      ->check(CLI::Range(0u, 16u))->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  options.shadows = !no_shadows;
   return -1;
 }
 

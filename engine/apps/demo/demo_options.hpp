@@ -6,6 +6,8 @@
 
 namespace tressvk::demo {
 
+enum class Animation { none, turn, shake, run };
+
 struct Options {
   uint32_t frames = 1;
   std::string out_dir = "out/demo";
@@ -14,9 +16,24 @@ struct Options {
   std::string device;  // index or name substring; empty: TRESSVK_DEVICE or automatic
   bool validation = false;
   bool list_devices = false;
+
+  std::string asset;   // .tvkhair file; empty: the bundled procedural groom on the procedural head
+  std::string mesh;    // OBJ head/character mesh (metres, in the asset's space); empty: procedural head if bundled
+  Animation animate = Animation::turn;
+  float wind = 0.0f;   // m/s^2
+  bool shadows = true;
+  // Not on the command line of the default run, but used by tests and docs:
+  float camera_distance = 0.0f;   // m from the framed centre; 0 = frame the scene
+  float lod_start = 0.0f;         // m; LOD from start to end distance down to lod_min_fraction (0 = off)
+  float lod_end = 0.0f;
+  float lod_min_fraction = 0.25f;
+  uint32_t guides = 1200;         // bundled groom: guides and follow hairs per guide
+  uint32_t follows = 7;
 };
 
 // Parses argv. Returns an exit code to stop with (0 after --help), or -1 to go on.
 int parse_options(int argc, char** argv, Options& options);
+
+const char* animation_name(Animation a);
 
 }  // namespace tressvk::demo

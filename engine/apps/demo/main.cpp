@@ -1,12 +1,11 @@
-// tressvk-demo: the host engine's main job. v0 brings up the device the way an engine integrating TressVK
-// must (plugin requirements merged before vkCreateDevice), creates and destroys a TressVK context through the C
-// API, renders offscreen frames and writes them as PNG files.
+// tressvk-demo: the host engine's main job. It brings up the device the way an engine integrating TressVK must
+// (plugin requirements merged before vkCreateDevice), builds the scene (a head with a groom, or the given asset
+// and mesh), simulates and renders the hair through the plugin's C API inside the engine's own shadow and main
+// passes, and writes the frames as PNG files with per-frame GPU times.
+#include "demo_app.hpp"
 #include "demo_options.hpp"
-#include "demo_renderer.hpp"
-#include "plugin_host.hpp"
 
 #include <tressvk/engine/device.hpp>
-#include <tressvk/engine/frame_loop.hpp>
 #include <tressvk/engine/png.hpp>
 
 #include <algorithm>
@@ -35,6 +34,11 @@ std::string frame_name(uint32_t index) {
   return name;
 }
 
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
 int run(const tressvk::demo::Options& options) {
   using namespace tressvk;
   TvkDeviceRequirements req{};
@@ -56,41 +60,42 @@ int run(const tressvk::demo::Options& options) {
               options.validation ? " [validation + synchronization validation]" : "");
 
   {
-    // Two frames in flight, for the plugin context and the frame loop: the GPU renders frame n+1 while the CPU
-    // writes the PNG of frame n.
-    constexpr uint32_t kFramesInFlight = 2;
-    demo::PluginContext plugin(device, kFramesInFlight);
+    demo::DemoApp app(device, options);
+    const TvkAssetInfo& info = app.asset_info();
+    std::printf("hair: %s: %u strands (%u guides x %u), %u vertices each, median length %.3f m, strand width "
+                "%.2f mm\n",
+                app.scene().asset_name.c_str(), info.total_strands, info.guide_count, 1 + info.follow_per_guide,
+                info.vertices_per_strand, static_cast<double>(info.median_strand_length),
+                1000.0 * static_cast<double>(app.scene().strand_width));
+    std::printf("scene: %s head mesh (%zu triangles), %zu capsule collider(s), animate %s, wind %.2f m/s^2, shadows "
+                "%s\n",
+                options.mesh.empty() ? (options.asset.empty() ? "procedural" : "no") : options.mesh.c_str(),
+                app.scene().head.vertices.size() / 3, app.scene().capsules.size(),
+                demo::animation_name(options.animate), static_cast<double>(options.wind),
+                options.shadows ? "on" : "off");
     TvkMemoryUsage usage{};
-    if (tressvk_get_memory_usage(plugin.get(), &usage) == TVK_SUCCESS)
-      std::printf("TressVK context created (%u allocation(s), %llu bytes)\n", usage.allocation_count,
-                  static_cast<unsigned long long>(usage.device_bytes));
+    if (tressvk_get_memory_usage(app.plugin(), &usage) == TVK_SUCCESS)
+      std::printf("TressVK GPU memory: %u allocation(s), %.2f MB\n", usage.allocation_count,
+                  static_cast<double>(usage.device_bytes) / 1e6);
 
-    demo::DemoRenderer renderer(device, options.width, options.height, kFramesInFlight);
     const std::filesystem::path out_dir = std::filesystem::absolute(options.out_dir);
-    std::vector<double> gpu_ms;
-    engine::FrameLoop loop(device, kFramesInFlight, demo::DemoRenderer::kTimestampCount,
-                           [&](const engine::FrameLoop::Frame& done) {
-                             demo::FrameResult frame = renderer.result(done);
-                             const auto index = static_cast<uint32_t>(done.number);
-                             engine::write_png(out_dir / frame_name(index), frame.pixels);
-                             if (frame.gpu_ms) {
-                               std::printf("frame %u: GPU %.3f ms\n", index, *frame.gpu_ms);
-                               gpu_ms.push_back(*frame.gpu_ms);
-                             } else {
-                               std::printf("frame %u: GPU time unavailable (no timestamps on this queue)\n", index);
-                             }
-                           });
-    for (uint32_t f = 0; f < options.frames; ++f) {
-      renderer.record(loop.begin());
-      loop.end();
-    }
-    loop.finish();
-    if (gpu_ms.size() > 1) {
+    std::vector<double> sim_ms, shadow_ms, shading_ms;
+    app.run(options.frames, [&](demo::FrameReport& frame) {
+      engine::write_png(out_dir / frame_name(frame.index), frame.pixels);
+      if (frame.simulation_ms && frame.shadow_ms && frame.shading_ms) {
+        std::printf("frame %u: GPU simulation %.3f ms, shadow %.3f ms, shading %.3f ms (%u strands drawn)\n",
+                    frame.index, *frame.simulation_ms, *frame.shadow_ms, *frame.shading_ms, frame.strands_drawn);
+        sim_ms.push_back(*frame.simulation_ms);
+        shadow_ms.push_back(*frame.shadow_ms);
+        shading_ms.push_back(*frame.shading_ms);
+      } else {
+        std::printf("frame %u: GPU time unavailable (no timestamps on this queue)\n", frame.index);
+      }
+    });
+    if (sim_ms.size() > 1)
       // The first frame pays for shader compilation (lavapipe JITs on first use), so the median says more.
-      std::sort(gpu_ms.begin(), gpu_ms.end());
-      std::printf("GPU time per frame: median %.3f ms, min %.3f ms, max %.3f ms over %zu frames\n",
-                  gpu_ms[gpu_ms.size() / 2], gpu_ms.front(), gpu_ms.back(), gpu_ms.size());
-    }
+      std::printf("GPU time per frame (median of %zu): simulation %.3f ms, shadow %.3f ms, shading %.3f ms\n",
+                  sim_ms.size(), median(sim_ms), median(shadow_ms), median(shading_ms));
     device.wait_idle();
     std::printf("wrote %u frame(s) of %ux%u to %s\n", options.frames, options.width, options.height,
                 out_dir.c_str());

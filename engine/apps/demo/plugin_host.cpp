@@ -13,13 +13,20 @@ void on_plugin_message(TvkMessageSeverity severity, const char* message, void* /
 }
 }  // namespace
 
-PluginContext::PluginContext(engine::Device& device, uint32_t frames_in_flight) : device_(device) {
+void check_tvk(TvkResult result, TvkContext context, const char* what) {
+  if (result == TVK_SUCCESS) return;
+  throw engine::Error(std::string(what) + " failed: " + tressvk_result_string(result) +
+                      (context ? std::string(": ") + tressvk_last_error(context) : std::string()));
+}
+
+PluginContext::PluginContext(engine::Device& device, uint32_t frames_in_flight, bool timestamps) : device_(device) {
   if (TVK_CHECK_VERSION() != TVK_SUCCESS)
     throw engine::Error("libtressvk " + std::to_string(tressvk_version()) + " does not match the header " +
                         std::to_string(TVK_VERSION_NUM));
   TvkContextCreateInfo info = device.plugin_context_info();
   info.frames_in_flight = frames_in_flight;
   info.message_callback = on_plugin_message;
+  info.enable_timestamps = timestamps ? VK_TRUE : VK_FALSE;
   const TvkResult r = tressvk_create_context(&info, &context_);
   if (r != TVK_SUCCESS)
     throw engine::Error(std::string("tressvk_create_context failed: ") + tressvk_result_string(r));
@@ -29,6 +36,44 @@ PluginContext::~PluginContext() {
   if (!context_) return;
   vkDeviceWaitIdle(device_.device());  // a destructor must not throw; a lost device is reported elsewhere
   tressvk_destroy_context(context_);
+}
+
+HairHost::HairHost(engine::Device& device, TvkContext context, std::span<const std::byte> asset_bytes,
+                   const TvkRendererCreateInfo& renderer_info)
+    : device_(device), context_(context) {
+  try {
+    // The asset's upload is recorded into a command buffer of ours; a one-time submission here (a streaming
+    // engine would put it into the first frame that uses the asset).
+    device.run_commands([&](VkCommandBuffer cmd) {
+      TvkAssetLoadInfo li{};
+      li.struct_size = sizeof(li);
+      li.data = asset_bytes.data();
+      li.size = asset_bytes.size();
+      li.upload_command_buffer = cmd;
+      check_tvk(tressvk_load_asset(context, &li, &asset_), context, "tressvk_load_asset");
+    });
+    check_tvk(tressvk_get_asset_info(asset_, &info_), context, "tressvk_get_asset_info");
+    TvkInstanceCreateInfo ic{};
+    ic.struct_size = sizeof(ic);
+    ic.asset = asset_;
+    check_tvk(tressvk_create_instance(context, &ic, &instance_), context, "tressvk_create_instance");
+    check_tvk(tressvk_create_renderer(context, &renderer_info, &renderer_), context, "tressvk_create_renderer");
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+HairHost::~HairHost() { release(); }
+
+void HairHost::release() {
+  vkDeviceWaitIdle(device_.device());  // the GPU may still use them (destruction needs an idle device)
+  if (renderer_) tressvk_destroy_renderer(renderer_);
+  if (instance_) tressvk_destroy_instance(instance_);
+  if (asset_) tressvk_destroy_asset(asset_);
+  renderer_ = nullptr;
+  instance_ = nullptr;
+  asset_ = nullptr;
 }
 
 }  // namespace tressvk::demo

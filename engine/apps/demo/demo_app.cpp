@@ -1,0 +1,236 @@
+#include "demo_app.hpp"
+
+#include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/sync.hpp>
+#include <tressvk/engine/timestamps.hpp>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace tressvk::demo {
+
+namespace {
+
+constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;  // shaders write linear colour; PNG gets sRGB
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+constexpr uint32_t kTimestamps = 4;  // begin, after simulation, after shadow, after shading
+
+// Where the previous frame left the shared targets. Old contents are discarded (layout UNDEFINED, every frame
+// clears), but the execution dependency on the previous frame's last use stays: its readback copy for colour,
+// its depth writes for depth, its fragment-shader reads of the shadow map.
+constexpr engine::ResourceState kColorAfterReadback{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE,
+                                                    VK_IMAGE_LAYOUT_UNDEFINED};
+constexpr engine::ResourceState kDepthAfterFrame{VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                                                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                                                 VK_IMAGE_LAYOUT_UNDEFINED};
+constexpr engine::ResourceState kShadowAfterFrame{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
+                                                  VK_IMAGE_LAYOUT_UNDEFINED};
+
+void to_array(const glm::dmat4& m, double (&out)[16]) { std::memcpy(out, glm::value_ptr(m), sizeof(out)); }
+
+glm::dmat4 instance_matrix(const TvkInstanceTransform& x) {
+  const glm::dquat q(x.rotation[3], x.rotation[0], x.rotation[1], x.rotation[2]);
+  glm::dmat4 m = glm::mat4_cast(q);
+  m[3] = glm::dvec4(x.translation[0], x.translation[1], x.translation[2], 1.0);
+  return m;
+}
+
+}  // namespace
+
+DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour flavour)
+    : device_(device),
+      options_(options),
+      flavour_(flavour),
+      scene_(build_scene(options)),
+      target_(engine::create_offscreen_target(device, options.width, options.height, kColorFormat, kDepthFormat)),
+      plugin_(device, kFramesInFlight, /*timestamps=*/false) {
+  if (flavour_ == PassFlavour::render_pass) render_pass_ = engine::RenderPassTarget(device, target_);
+  scene_renderer_ = std::make_unique<SceneRenderer>(device, kColorFormat, kDepthFormat, kShadowMapSize,
+                                                    kFramesInFlight, scene_.head, scene_.floor,
+                                                    render_pass_.render_pass());
+  TvkRendererCreateInfo ri{};
+  ri.struct_size = sizeof(ri);
+  ri.shading.color_format = kColorFormat;
+  ri.shading.depth_format = kDepthFormat;
+  ri.shading.samples = VK_SAMPLE_COUNT_1_BIT;
+  ri.shading.render_pass = render_pass_.render_pass();  // VK_NULL_HANDLE: dynamic rendering
+  ri.shading.subpass = 0;
+  ri.shadow.depth_format = SceneRenderer::kShadowFormat;
+  hair_ = std::make_unique<HairHost>(device, plugin_.get(), scene_.asset_bytes, ri);
+
+  material_ = TVK_HAIR_MATERIAL_DEFAULT_INIT;
+  material_.strand_width = scene_.strand_width;
+  for (uint32_t i = 0; i < kFramesInFlight; ++i)
+    readback_.push_back(engine::create_buffer(device, VkDeviceSize{4} * options.width * options.height,
+                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback));
+  strands_.assign(kFramesInFlight, 0);
+}
+
+DemoApp::~DemoApp() { device_.wait_idle(); }
+
+void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_frame) {
+  engine::FrameLoop loop(device_, kFramesInFlight, kTimestamps, [&](const engine::FrameLoop::Frame& done) {
+    FrameReport report;
+    report.index = static_cast<uint32_t>(done.number);
+    report.pixels = engine::pixels_from_buffer(readback_[done.slot], target_.color);
+    report.simulation_ms = done.timestamps->elapsed_ms(0, 1);
+    report.shadow_ms = done.timestamps->elapsed_ms(1, 2);
+    report.shading_ms = done.timestamps->elapsed_ms(2, 3);
+    report.strands_drawn = strands_[done.slot];
+    on_frame(report);
+  });
+  for (uint32_t f = 0; f < frames; ++f) {
+    record(loop.begin());
+    loop.end();
+  }
+  loop.finish();
+}
+
+void DemoApp::record(const engine::FrameLoop::Frame& frame) {
+  const TvkContext ctx = plugin_.get();
+  const double t = static_cast<double>(frame.number + 1) * kFrameTime;
+
+  // ---- The frame's simulation input: head motion, colliders, wind.
+  TvkSimFrame sim{};
+  sim.dt = static_cast<float>(kFrameTime);
+  sim.transform = animate(options_.animate, t);
+  sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
+  std::copy_n(scene_.capsules.begin(), sim.capsule_count, sim.capsules);
+  const TvkWind wind = TVK_WIND_DEFAULT_INIT;
+  sim.wind = wind;
+  sim.wind.direction[0] = 1.0f;
+  sim.wind.direction[2] = -0.4f;
+  sim.wind.strength = options_.wind;
+  check_tvk(tressvk_set_frame(hair_->instance(), &sim), ctx, "tressvk_set_frame");
+  check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+
+  // ---- Camera and light, in double (world).
+  const glm::dmat4 model = instance_matrix(sim.transform);
+  const glm::dvec3 center = glm::dvec3(model * glm::dvec4(scene_.center[0], scene_.center[1], scene_.center[2], 1.0));
+  const double fov = glm::radians(30.0);
+  const double aspect = static_cast<double>(options_.width) / options_.height;
+  const double distance = options_.camera_distance > 0.0f
+                              ? double{options_.camera_distance}
+                              : 1.1 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect));
+  const glm::dvec3 eye = center + glm::normalize(glm::dvec3(0.9, 0.12, 0.75)) * distance;
+  glm::dmat4 proj = glm::perspectiveRH_ZO(fov, aspect, 0.02 * distance, 10.0 * distance + 4.0 * scene_.radius);
+  proj[1][1] *= -1.0;  // Vulkan clip space: +y is down
+  SceneFrame sf;
+  sf.view_proj = proj * glm::lookAtRH(eye, center, glm::dvec3(0, 1, 0));
+  sf.eye = eye;
+  sf.head_model = model;
+  sf.lights = scene_.lights;
+  sf.ambient = glm::vec3(0.16f, 0.17f, 0.2f);
+  sf.shadows = options_.shadows;
+  const TvkLight& key = scene_.lights[0];
+  const glm::dvec3 light_dir = glm::normalize(glm::dvec3(key.direction[0], key.direction[1], key.direction[2]));
+  const double r = 1.6 * scene_.radius;
+  const glm::dvec3 light_eye = center - light_dir * (2.0 * r);
+  const glm::dvec3 up = std::abs(light_dir.y) > 0.95 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const double near_plane = 0.0, far_plane = 4.0 * r;
+  sf.shadow_proj = glm::orthoRH_ZO(-r, r, -r, r, near_plane, far_plane) * glm::lookAtRH(light_eye, center, up);
+  scene_renderer_->update(frame.slot, sf);
+
+  TvkView camera{};
+  to_array(sf.view_proj, camera.view_projection);
+  for (int i = 0; i < 3; ++i) camera.eye[i] = eye[i];
+  camera.width = options_.width;
+  camera.height = options_.height;
+  TvkView light{};
+  to_array(sf.shadow_proj, light.view_projection);
+  for (int i = 0; i < 3; ++i) {
+    light.eye[i] = light_eye[i];
+    light.direction[i] = static_cast<float>(light_dir[i]);
+  }
+  light.orthographic = 1;
+  light.width = light.height = kShadowMapSize;
+  TvkLodSettings lod{};
+  if (options_.lod_start > 0.0f && options_.lod_end > options_.lod_start) {
+    lod.start_distance = options_.lod_start;
+    lod.end_distance = options_.lod_end;
+    lod.min_fraction = options_.lod_min_fraction;
+  }
+
+  // ---- Recording.
+  const VkCommandBuffer cmd = frame.cmd;
+  frame.timestamps->cmd_write(cmd, 0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
+  TvkSimulateInfo si{};
+  si.struct_size = sizeof(si);
+  si.instance_count = 1;
+  const TvkInstance instance = hair_->instance();
+  si.instances = &instance;
+  check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+  frame.timestamps->cmd_write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+
+  // Shadow pass: the engine's shadow map; the head and the hair both draw into it. Always cleared (and
+  // transitioned) so the main pass samples a defined image even with --no-shadows.
+  const engine::OffscreenTarget& shadow = scene_renderer_->shadow_target();
+  engine::ClearValues clear_shadow;
+  engine::cmd_begin_rendering(cmd, shadow, clear_shadow, engine::state::kUndefined, kShadowAfterFrame);
+  if (options_.shadows) {
+    scene_renderer_->cmd_draw_shadow(cmd, frame.slot, sf);
+    TvkDrawInfo di{};
+    di.struct_size = sizeof(di);
+    di.instance = instance;
+    di.view = &light;
+    di.lod_view = &camera;  // the same strands as the camera sees
+    di.materials = &material_;
+    di.material_count = 1;
+    di.lod = lod;
+    check_tvk(tressvk_cmd_draw_shadow(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_shadow");
+  }
+  engine::cmd_end_rendering(cmd);
+  frame.timestamps->cmd_write(cmd, 2, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+  engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, engine::state::kDepthAttachment,
+                            engine::state::kFragmentSampled);
+
+  // Main pass: meshes first (opaque), then the hair over them.
+  engine::ClearValues clear;
+  clear.color = {0.05f, 0.055f, 0.065f, 1.0f};
+  if (flavour_ == PassFlavour::render_pass)
+    engine::cmd_begin_render_pass(cmd, render_pass_, clear);
+  else
+    engine::cmd_begin_rendering(cmd, target_, clear, kColorAfterReadback, kDepthAfterFrame);
+  scene_renderer_->cmd_draw(cmd, frame.slot, sf);
+  TvkShadowMap shadow_map{};
+  if (options_.shadows) {
+    shadow_map.depth_view = shadow.depth.view();
+    shadow_map.sampler = scene_renderer_->hair_shadow_sampler();
+    shadow_map.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    to_array(sf.shadow_proj, shadow_map.view_projection);
+    shadow_map.perspective = 0;
+    shadow_map.near_plane = static_cast<float>(near_plane);
+    shadow_map.far_plane = static_cast<float>(far_plane);
+  }
+  std::vector<TvkLight> lights = scene_.lights;
+  if (!options_.shadows)
+    for (TvkLight& l : lights) l.shadowed = 0;
+  TvkDrawInfo di{};
+  di.struct_size = sizeof(di);
+  di.instance = instance;
+  di.view = &camera;
+  di.materials = &material_;
+  di.material_count = 1;
+  di.lod = lod;
+  di.light_count = static_cast<uint32_t>(lights.size());
+  di.lights = lights.data();
+  di.ambient[0] = sf.ambient.x;
+  di.ambient[1] = sf.ambient.y;
+  di.ambient[2] = sf.ambient.z;
+  di.shadow = options_.shadows ? &shadow_map : nullptr;
+  check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
+  strands_[frame.slot] = tressvk_get_last_drawn_strands(hair_->renderer());
+  if (flavour_ == PassFlavour::render_pass)
+    engine::cmd_end_render_pass(cmd);
+  else
+    engine::cmd_end_rendering(cmd);
+  frame.timestamps->cmd_write(cmd, 3, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+  engine::cmd_readback_image(cmd, target_.color, engine::state::kColorAttachment, readback_[frame.slot]);
+}
+
+}  // namespace tressvk::demo

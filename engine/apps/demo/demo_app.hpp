@@ -1,0 +1,67 @@
+// The demo's frame, the way a studio engine integrates TressVK:
+//   simulate (outside passes) -> shadow pass [meshes + tressvk_cmd_draw_shadow] -> barrier (shadow map to
+//   sampled) -> main pass [meshes + tressvk_cmd_draw_hair] -> readback.
+// Frames run in flight (engine::FrameLoop): the GPU renders frame n+1 while the CPU writes the PNG of frame n.
+// GPU timestamps separate simulation, shadow and shading time. Used by tressvk-demo and the golden-image tests.
+#pragma once
+
+#include "demo_options.hpp"
+#include "plugin_host.hpp"
+#include "scene.hpp"
+#include "scene_renderer.hpp"
+
+#include <tressvk/engine/buffer.hpp>
+#include <tressvk/engine/device.hpp>
+#include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/image.hpp>
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace tressvk::demo {
+
+struct FrameReport {
+  uint32_t index = 0;
+  engine::Pixels pixels;
+  std::optional<double> simulation_ms, shadow_ms, shading_ms;  // empty when the queue has no timestamps
+  uint32_t strands_drawn = 0;
+};
+
+enum class PassFlavour { dynamic_rendering, render_pass };
+
+class DemoApp {
+ public:
+  static constexpr uint32_t kFramesInFlight = 2;
+  static constexpr uint32_t kShadowMapSize = 1024;
+  static constexpr double kFrameTime = 1.0 / 60.0;
+
+  DemoApp(engine::Device& device, const Options& options, PassFlavour flavour = PassFlavour::dynamic_rendering);
+  ~DemoApp();
+
+  // Renders `frames` frames; on_frame gets each finished frame in order.
+  void run(uint32_t frames, const std::function<void(FrameReport&)>& on_frame);
+
+  const Scene& scene() const { return scene_; }
+  TvkContext plugin() const { return plugin_.get(); }
+  const TvkAssetInfo& asset_info() const { return hair_->info(); }
+
+ private:
+  void record(const engine::FrameLoop::Frame& frame);
+
+  engine::Device& device_;
+  Options options_;
+  PassFlavour flavour_;
+  Scene scene_;
+  engine::OffscreenTarget target_;
+  engine::RenderPassTarget render_pass_;
+  PluginContext plugin_;
+  std::unique_ptr<SceneRenderer> scene_renderer_;
+  std::unique_ptr<HairHost> hair_;
+  std::vector<engine::Buffer> readback_;  // one per frame slot
+  std::vector<uint32_t> strands_;         // strands drawn, per slot
+  TvkHairMaterial material_{};
+};
+
+}  // namespace tressvk::demo

@@ -1,0 +1,177 @@
+#include "scene.hpp"
+
+#include <tressvk/asset_io.hpp>
+#include <tressvk/baker/import.hpp>
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/engine/check.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace tressvk::demo {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+TvkLight directional(std::array<float, 3> travel, std::array<float, 3> color, float intensity, bool shadowed) {
+  TvkLight l{};
+  l.type = TVK_LIGHT_DIRECTIONAL;
+  for (int i = 0; i < 3; ++i) {
+    l.direction[i] = travel[i];
+    l.color[i] = color[i];
+  }
+  l.intensity = intensity;
+  l.shadowed = shadowed ? 1u : 0u;
+  return l;
+}
+
+// One vertical capsule through the middle of the mesh's bounding box, as wide as its narrower horizontal side
+// allows: a rough but safe collider for an arbitrary head mesh (documented in docs/rendering.md).
+TvkCapsule fit_capsule(const engine::MeshBounds& b) {
+  const double cx = 0.5 * (b.min[0] + b.max[0]), cz = 0.5 * (b.min[2] + b.max[2]);
+  const double r = 0.45 * std::min(b.max[0] - b.min[0], b.max[2] - b.min[2]);
+  const double y0 = std::min(b.min[1] + r, 0.5 * (b.min[1] + b.max[1]));
+  const double y1 = std::max(b.max[1] - r, y0);
+  TvkCapsule c{};
+  c.p0[0] = static_cast<float>(cx);
+  c.p0[1] = static_cast<float>(y0);
+  c.p0[2] = static_cast<float>(cz);
+  c.p1[0] = static_cast<float>(cx);
+  c.p1[1] = static_cast<float>(y1);
+  c.p1[2] = static_cast<float>(cz);
+  c.r0 = c.r1 = static_cast<float>(r);
+  return c;
+}
+
+void add_capsule(Scene& scene, std::array<float, 3> p0, float r0, std::array<float, 3> p1, float r1,
+                 bool collider) {
+  scene.head.append(engine::make_capsule_mesh(p0, r0, p1, r1));
+  if (!collider) return;
+  TvkCapsule c{};
+  for (int i = 0; i < 3; ++i) {
+    c.p0[i] = p0[i];
+    c.p1[i] = p1[i];
+  }
+  c.r0 = r0;
+  c.r1 = r1;
+  scene.capsules.push_back(c);
+}
+
+}  // namespace
+
+Scene build_scene(const Options& options) {
+  Scene scene;
+  asset::HairAsset hair;
+  if (options.asset.empty()) {
+    // The bundled sample: long hair grown on the procedural head sphere (r = 0.1 m at the origin), made in memory.
+    baker::BuiltinGroomOptions groom;
+    groom.guide_count = options.guides;
+    groom.follow_per_guide = options.follows;
+    groom.vertices_per_strand = 48;
+    hair = baker::make_builtin_groom("long128", groom);
+    scene.asset_name = "bundled long128 groom (" + std::to_string(groom.guide_count) + " guides x " +
+                       std::to_string(1 + groom.follow_per_guide) + ")";
+    scene.asset_bytes = asset::write(hair);
+  } else {
+    scene.asset_bytes = baker::read_binary_file(options.asset);
+    asset::ReadResult r = asset::read(scene.asset_bytes);
+    if (!r.ok()) throw engine::Error(options.asset + ": " + r.error);
+    hair = std::move(r.asset);
+    scene.asset_name = options.asset;
+  }
+  const asset::Bounds hb = asset::guide_bounds(hair);
+  std::array<double, 3> lo = hb.min, hi = hb.max;
+
+  if (!options.mesh.empty()) {
+    scene.head = engine::load_obj_mesh(options.mesh);
+    scene.capsules.push_back(fit_capsule(engine::mesh_bounds(scene.head)));
+  } else if (options.asset.empty()) {
+    // Head sphere (the scalp the groom grows on, a hair's breadth inside it), neck and nose; the colliders are
+    // the same capsules.
+    add_capsule(scene, {0, 0, 0}, 0.099f, {0, 0, 0}, 0.099f, true);
+    add_capsule(scene, {0, -0.05f, 0.0f}, 0.05f, {0, -0.22f, -0.01f}, 0.045f, true);
+    add_capsule(scene, {0, -0.005f, 0.095f}, 0.01f, {0, -0.035f, 0.112f}, 0.014f, false);
+  }
+  if (!scene.head.vertices.empty()) {
+    const engine::MeshBounds mb = engine::mesh_bounds(scene.head);
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], mb.min[i]);
+      hi[i] = std::max(hi[i], mb.max[i]);
+    }
+  }
+  double r2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    scene.center[i] = 0.5 * (lo[i] + hi[i]);
+    r2 += 0.25 * (hi[i] - lo[i]) * (hi[i] - lo[i]);
+  }
+  scene.radius = std::sqrt(r2);
+
+  // Strand width from the groom's density: about as wide as the spacing of the strands drawn over the scalp
+  // would need to cover it twice, kept between 0.15 mm and 1.2 mm.
+  double median = 0;
+  {
+    std::vector<double> lengths;
+    const uint32_t n = hair.vertices_per_strand;
+    for (uint32_t g = 0; g < hair.guide_count(); ++g) {
+      double len = 0;
+      for (uint32_t v = 0; v + 1 < n; ++v) len += hair.rest_lengths[size_t{g} * n + v];
+      lengths.push_back(len);
+    }
+    std::nth_element(lengths.begin(), lengths.begin() + static_cast<long>(lengths.size() / 2), lengths.end());
+    median = lengths.empty() ? 0.1 : lengths[lengths.size() / 2];
+  }
+  scene.hair_length = static_cast<float>(median);
+  const double extent = std::max({hb.max[0] - hb.min[0], hb.max[2] - hb.min[2], 1e-3});
+  const double spacing = extent * kPi / std::sqrt(static_cast<double>(hair.total_strands()));
+  scene.strand_width = static_cast<float>(std::clamp(0.35 * spacing, 0.00015, 0.002));
+
+  // Floor a little below the lowest point.
+  const float floor_y = static_cast<float>(lo[1] - 0.05 * scene.radius);
+  scene.floor = engine::make_floor_mesh({static_cast<float>(scene.center[0]), floor_y, static_cast<float>(scene.center[2])},
+                                        static_cast<float>(4.0 * scene.radius));
+
+  // Key light (shadowed) from the upper front left, a warm fill spot from the right, a cool rim from behind.
+  scene.lights.push_back(directional({0.45f, -0.75f, -0.5f}, {1.0f, 0.96f, 0.9f}, 2.2f, options.shadows));
+  TvkLight fill{};
+  fill.type = TVK_LIGHT_SPOT;
+  const double fr = 3.0 * scene.radius;
+  fill.position[0] = scene.center[0] + fr;
+  fill.position[1] = scene.center[1] + 0.3 * fr;
+  fill.position[2] = scene.center[2] + 0.9 * fr;
+  for (int i = 0; i < 3; ++i) fill.direction[i] = static_cast<float>(scene.center[i] - fill.position[i]);
+  fill.color[0] = 1.0f;
+  fill.color[1] = 0.85f;
+  fill.color[2] = 0.7f;
+  fill.intensity = static_cast<float>(0.9 * fr * fr);  // ~0.9 at the head
+  fill.inner_cone = 0.35f;
+  fill.outer_cone = 0.6f;
+  scene.lights.push_back(fill);
+  scene.lights.push_back(directional({0.2f, -0.3f, 1.0f}, {0.6f, 0.7f, 1.0f}, 0.9f, false));
+  return scene;
+}
+
+TvkInstanceTransform animate(Animation animation, double t) {
+  TvkInstanceTransform x = TVK_INSTANCE_TRANSFORM_DEFAULT_INIT;
+  double yaw = 0, pitch = 0;
+  switch (animation) {
+    case Animation::none: break;
+    case Animation::turn: yaw = 0.8 * std::sin(2 * kPi * t / 3.0); break;
+    case Animation::shake: yaw = 0.45 * std::sin(2 * kPi * 2.5 * t); break;
+    case Animation::run:
+      x.translation[0] = 2.5 * t;
+      x.translation[1] = 0.03 * std::abs(std::sin(2 * kPi * 1.4 * t));
+      pitch = 0.12;
+      yaw = 0.5 * kPi;  // facing the direction of travel
+      break;
+  }
+  // q = yaw about y, then pitch about x.
+  const double cy = std::cos(0.5 * yaw), sy = std::sin(0.5 * yaw), cp = std::cos(0.5 * pitch), sp = std::sin(0.5 * pitch);
+  x.rotation[0] = cy * sp;
+  x.rotation[1] = sy * cp;
+  x.rotation[2] = -sy * sp;
+  x.rotation[3] = cy * cp;
+  return x;
+}
+
+}  // namespace tressvk::demo

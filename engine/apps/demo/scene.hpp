@@ -1,0 +1,36 @@
+// The demo's scene: the hair asset (bundled procedural groom or a .tvkhair file), the head mesh (procedural, or
+// an OBJ) with capsule colliders that fit it, a floor, lights, the camera framing, and the head's motion.
+#pragma once
+
+#include "demo_options.hpp"
+
+#include <tressvk/engine/mesh.hpp>
+#include <tressvk/tressvk.h>
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace tressvk::demo {
+
+struct Scene {
+  std::vector<std::byte> asset_bytes;   // a .tvkhair file's bytes
+  std::string asset_name;
+  engine::Mesh head;                    // instance space (asset coordinates); moves with the instance
+  engine::Mesh floor;                   // world
+  std::vector<TvkCapsule> capsules;     // instance space, the same shapes as the head mesh (procedural) or fitted
+  std::vector<TvkLight> lights;         // [0] is the shadowed key light
+  std::array<double, 3> center{};       // framed centre, instance space
+  double radius = 0.5;                  // m, bounding radius of hair + head around `center`
+  float strand_width = 0.0006f;         // m, scaled with the groom
+  float hair_length = 0.5f;             // m, median strand length (scale for everything relative)
+};
+
+// Builds the scene the options ask for. Throws engine::Error (naming the file) on unreadable input.
+Scene build_scene(const Options& options);
+
+// The instance's rigid transform at time t (seconds) for the animation.
+TvkInstanceTransform animate(Animation animation, double t);
+
+}  // namespace tressvk::demo
