@@ -93,11 +93,11 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
 
 void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const TvkContext ctx = plugin_.get();
-  const double t = static_cast<double>(frame.number + 1) * kFrameTime;
+  const double t = static_cast<double>(frame.number + 1) * options_.frame_time;
 
   // ---- The frame's simulation input: head motion, colliders, wind.
   TvkSimFrame sim{};
-  sim.dt = static_cast<float>(kFrameTime);
+  sim.dt = static_cast<float>(options_.frame_time);
   sim.transform = animate(options_.animate, t);
   sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
   std::copy_n(scene_.capsules.begin(), sim.capsule_count, sim.capsules);

@@ -35,7 +35,6 @@ class DemoApp {
  public:
   static constexpr uint32_t kFramesInFlight = 2;
   static constexpr uint32_t kShadowMapSize = 1024;
-  static constexpr double kFrameTime = 1.0 / 60.0;
 
   DemoApp(engine::Device& device, const Options& options, PassFlavour flavour = PassFlavour::dynamic_rendering);
   ~DemoApp();

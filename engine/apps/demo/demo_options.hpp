@@ -29,6 +29,7 @@ struct Options {
   float lod_min_fraction = 0.25f;
   uint32_t guides = 1200;         // bundled groom: guides and follow hairs per guide
   uint32_t follows = 7;
+  double frame_time = 1.0 / 60.0;  // s per frame (0 = the hair stays in its rest pose: renderer-only tests)
 };
 
 // Parses argv. Returns an exit code to stop with (0 after --help), or -1 to go on.
