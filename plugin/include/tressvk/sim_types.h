@@ -38,10 +38,15 @@ typedef struct TvkSimParams {
                                as 0.5 * min(local_stiffness, 0.95) per iteration. 0 = no local-shape pass.
                                Default 0.9 */
   uint32_t local_iterations;  /* 0..TVK_MAX_ITERATIONS sweeps of local shape per step, honoured for every vertex
-                               count. 0 = no local-shape pass. Default 2 */
-  uint32_t length_iterations; /* 1..TVK_MAX_ITERATIONS root-to-tip length-constraint sweeps per step. Default 4 */
-  float vsp_coefficient;    /* 0..1: velocity shock propagation, the fraction of the root segment's rigid motion
-                               of this step given to the whole strand. 0 = no VSP pass. Default 0.8 */
+                               count. 0 = no local-shape pass. Default 2 (1 is not stable on tightly curled
+                               strands, as in TressFX) */
+  uint32_t length_iterations; /* 1..TVK_MAX_ITERATIONS root-to-tip length-constraint sweeps per step; the last is
+                               follow-the-leader (exact lengths), earlier ones share corrections between both
+                               ends. Default 1 (more sweeps soften the strand and, with local shape, can make a
+                               curled rest pose unstable) */
+  float vsp_coefficient;    /* 0..1: velocity shock propagation, the fraction of the root's rigid motion of this
+                               step given to the whole strand. 0 = no VSP pass. Default 0.9 (as TressFX 5.x; short
+                               strands lag less behind a fast head than at TressFX 4.1's 0.8) */
   float vsp_threshold;      /* m/s^2: root-segment acceleration above which the coefficient becomes 1 (ramping up
                                from 0.75x this value). Converted to a per-step length a*h^2. Default 100 */
   float max_speed;          /* m/s: a real velocity clamp (a vertex moves at most max_speed * h per step). Measured
@@ -51,7 +56,7 @@ typedef struct TvkSimParams {
 } TvkSimParams;
 
 #define TVK_SIM_PARAMS_DEFAULT_INIT \
-  { 0.08f, 0.15f, 0.3f, 0.9f, 2u, 4u, 0.8f, 100.0f, 50.0f, -1.0f }
+  { 0.08f, 0.15f, 0.3f, 0.9f, 2u, 1u, 0.9f, 100.0f, 50.0f, -1.0f }
 
 /* Wind: a world-space acceleration acting on each segment perpendicular to it (so it bends hair, never
  * stretches it), pointing WITH `direction`, spread over a cone so neighbouring strands differ, and gusting as
@@ -84,13 +89,14 @@ typedef struct TvkCapsule {
  * motion of the frame is interpolated across its steps. A frame shorter than one step runs no step and carries
  * its motion over. */
 typedef struct TvkTimeSettings {
-  float step_rate;          /* Hz, 30..480. Default 120 (2 steps at 60 fps: root motion is resolved twice per
-                               frame, gravity moves a vertex < 1 mm per step, and 30/60/120/144 fps hosts all
-                               simulate on the same time grid) */
-  uint32_t max_steps_per_frame; /* 1..TVK_MAX_STEPS_PER_FRAME. Default 4 (a 30 fps frame still runs in full) */
+  float step_rate;          /* Hz, 30..480. Default 240 (4 steps at 60 fps: gravity moves a free vertex 0.17 mm
+                               per step, well under the sub-millimetre segments of real grooms such as the Ratboy
+                               mohawk, where 120 Hz (0.68 mm per step) made the model's response to float32
+                               rounding 10x larger; and 30/60/120/144 fps hosts all simulate on the same grid) */
+  uint32_t max_steps_per_frame; /* 1..TVK_MAX_STEPS_PER_FRAME. Default 8 (a 30 fps frame still runs in full) */
 } TvkTimeSettings;
 
-#define TVK_TIME_SETTINGS_DEFAULT_INIT { 120.0f, 4u }
+#define TVK_TIME_SETTINGS_DEFAULT_INIT { 240.0f, 8u }
 
 /* An instance's rigid placement in the world: world = translation + rotation * instance_point. Double precision
  * so a character far from the origin keeps full precision: TressVK subtracts the translation in double and the

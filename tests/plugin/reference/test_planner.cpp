@@ -12,6 +12,14 @@ using namespace tvk_test;
 
 namespace {
 
+// The planner tests use a 120 Hz step with a cap of 4, independent of the library defaults.
+TvkSimSettings settings_120hz() {
+  TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  s.time.step_rate = 120.0f;
+  s.time.max_steps_per_frame = 4;
+  return s;
+}
+
 TvkSimFrame still_frame(double dt) {
   TvkSimFrame f{};
   f.dt = static_cast<float>(dt);
@@ -22,7 +30,7 @@ TvkSimFrame still_frame(double dt) {
 
 // All non-reset step times of a sequence of frames of length dt adding up to `total`.
 std::vector<double> step_times(double dt, int frames) {
-  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   std::vector<double> times;
   for (int i = 0; i < frames; ++i) {
     for (const Substep& s : planner.plan(still_frame(dt)).steps) {
@@ -51,7 +59,7 @@ TEST_CASE("planner: same steps for the same total time however the frames are sp
 }
 
 TEST_CASE("planner: every step has the fixed length and the first frame resets", "[reference][planner]") {
-  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   FramePlan first = planner.plan(still_frame(1.0 / 60.0));
   REQUIRE(first.steps.size() == 3);  // the zero-time reset step, then two steps of 1/120 s
   CHECK(first.steps[0].reset);
@@ -63,7 +71,7 @@ TEST_CASE("planner: every step has the fixed length and the first frame resets",
 }
 
 TEST_CASE("planner: a 0.25 s hitch is capped and the surplus dropped, not owed", "[reference][planner]") {
-  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   planner.plan(still_frame(1.0 / 60.0));
   FramePlan hitch = planner.plan(still_frame(0.25));
   CHECK(hitch.steps.size() == 4);
@@ -73,7 +81,7 @@ TEST_CASE("planner: a 0.25 s hitch is capped and the surplus dropped, not owed",
 }
 
 TEST_CASE("planner: motion is interpolated across the steps of a frame", "[reference][planner]") {
-  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   planner.plan(still_frame(1.0 / 60.0));
   TvkSimFrame f = still_frame(1.0 / 30.0);  // 4 steps
   f.transform.translation[0] = 0.4;
@@ -87,8 +95,7 @@ TEST_CASE("planner: motion is interpolated across the steps of a frame", "[refer
 }
 
 TEST_CASE("planner: a frame shorter than a step carries its motion to the next step", "[reference][planner]") {
-  TvkSimSettings s = default_settings();
-  FramePlanner planner(s, {0, 0, 0}, 0);
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   planner.plan(still_frame(1.0 / 120.0));
   TvkSimFrame f = still_frame(1.0 / 240.0);
   f.transform.translation[1] = 0.2;
@@ -100,7 +107,7 @@ TEST_CASE("planner: a frame shorter than a step carries its motion to the next s
 }
 
 TEST_CASE("planner: a teleport is a rotation of the state about the origin and no shift", "[reference][planner]") {
-  FramePlanner planner(default_settings(), {0.0, 1.5, 0.0}, 0);
+  FramePlanner planner(settings_120hz(), {0.0, 1.5, 0.0}, 0);
   planner.plan(still_frame(1.0 / 60.0));
   TvkSimFrame f = still_frame(1.0 / 60.0);
   f.teleport = 1;
@@ -117,8 +124,8 @@ TEST_CASE("planner: a teleport is a rotation of the state about the origin and n
 }
 
 TEST_CASE("planner: 10 km away plans the same simulation-space steps", "[reference][planner]") {
-  FramePlanner near(default_settings(), {0.01, 1.6, -0.02}, 0);
-  FramePlanner far(default_settings(), {0.01, 1.6, -0.02}, 0);
+  FramePlanner near(settings_120hz(), {0.01, 1.6, -0.02}, 0);
+  FramePlanner far(settings_120hz(), {0.01, 1.6, -0.02}, 0);
   for (int i = 0; i < 30; ++i) {
     TvkSimFrame f = still_frame(1.0 / 60.0);
     const double angle = 0.3 * std::sin(0.2 * i);
@@ -138,7 +145,7 @@ TEST_CASE("planner: 10 km away plans the same simulation-space steps", "[referen
 }
 
 TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][planner]") {
-  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   TvkSimFrame f = still_frame(1.0 / 60.0);
   f.capsule_count = 1;
   f.capsules[0] = TvkCapsule{{0, 0, 0}, 0.1f, {0, 1, 0}, 0.05f};
@@ -159,7 +166,7 @@ TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][plan
 }
 
 TEST_CASE("planner: bad input is rejected with the field named", "[reference][planner]") {
-  FramePlanner planner(default_settings(), {0, 0, 0}, 0);
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   TvkSimFrame f = still_frame(-1.0);
   CHECK_THROWS_WITH(planner.plan(f), Catch::Matchers::ContainsSubstring("dt"));
   f = still_frame(1.0 / 60.0);

@@ -31,8 +31,10 @@ inline constexpr double kContactBand = 0.02;
 // An edge shorter than this fraction of its rest length counts as collapsed: its direction is blended with its
 // previous one (length constraints) or the frame's axis (local shape). GLSL twin: kCollapse.
 inline constexpr double kCollapse = 1.0;
-// Strands shorter than this fraction of the groom's median strand length are carried rigidly (all pinned).
-inline constexpr double kRigidStrandRel = 0.1;
+// Strands shorter than this fraction of the groom's median strand length are carried rigidly (all pinned): short
+// hair barely bends under its own weight (the gravito-bending length of a human hair is about 4.5 cm), and such a
+// strand resolved into N vertices has sub-millimetre segments whose dynamics mostly amplify rounding.
+inline constexpr double kRigidStrandRel = 0.3;
 // GLSL twin: kDirectionEps in common.glsl.
 inline constexpr double kDirectionEps = 1e-4;
 
