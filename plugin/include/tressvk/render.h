@@ -16,7 +16,7 @@
  *   a FRAGMENT_SHADER / SHADER_SAMPLED_READ barrier before beginning the shading pass.
  * - Per-call constants live in a host-visible ring of frames_in_flight slices inside the renderer; the slice of
  *   frame F is reused at frame F + frames_in_flight, on the promise tressvk_new_frame stands for.
- * State disturbed: the bound graphics pipeline, graphics descriptor set 0 and graphics push constants; viewport,
+ * State disturbed: the bound graphics pipeline and graphics descriptor set 0 (no push constants); viewport,
  * scissor and depth bias are NOT set (the host's viewport and scissor are used as they are).
  */
 #ifndef TRESSVK_RENDER_H
