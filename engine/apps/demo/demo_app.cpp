@@ -116,7 +116,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const double aspect = static_cast<double>(options_.width) / options_.height;
   const double distance = options_.camera_distance > 0.0f
                               ? double{options_.camera_distance}
-                              : 1.1 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect));
+                              : 0.9 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect));
   const glm::dvec3 eye = center + glm::normalize(glm::dvec3(0.9, 0.12, 0.75)) * distance;
   glm::dmat4 proj = glm::perspectiveRH_ZO(fov, aspect, 0.02 * distance, 10.0 * distance + 4.0 * scene_.radius);
   proj[1][1] *= -1.0;  // Vulkan clip space: +y is down

@@ -68,7 +68,7 @@ typedef struct TvkHairMaterial {
   float fiber_alpha;                  /* self-shadowing: light absorbed by one fibre, 0..1 */
 } TvkHairMaterial;
 #define TVK_HAIR_MATERIAL_DEFAULT_INIT \
-  { { 0.07f, 0.035f, 0.018f }, { 0.15f, 0.085f, 0.045f }, 0.7f, 0.10f, 80.0f, 0.40f, 20.0f, 0.10f, -0.20f, \
+  { { 0.045f, 0.022f, 0.011f }, { 0.10f, 0.056f, 0.03f }, 0.7f, 0.22f, 80.0f, 0.45f, 20.0f, 0.10f, -0.20f, \
     0.0006f, 0.3f, 1.0f, 5.0f, 0.35f }
 
 typedef enum TvkLightType { TVK_LIGHT_DIRECTIONAL = 0, TVK_LIGHT_SPOT = 1 } TvkLightType;
