@@ -35,6 +35,9 @@ int parse_options(int argc, char** argv, Options& options) {
       ->check(CLI::ExistingFile);
   app.add_option("--mesh", options.mesh, "An OBJ head or character mesh in metres, in the asset's space")
       ->check(CLI::ExistingFile);
+  app.add_option("--mesh-scale", options.mesh_scale,
+                 "Uniform scale from the OBJ's units to metres (bake the hair with the same tressvk-bake --scale)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
   const std::map<std::string, Animation> animations{
       {"none", Animation::none}, {"turn", Animation::turn}, {"shake", Animation::shake}, {"run", Animation::run}};
   app.add_option("--animate", options.animate, "Head motion: none, turn, shake or run")

@@ -18,7 +18,8 @@ struct Options {
   bool list_devices = false;
 
   std::string asset;   // .tvkhair file; empty: the bundled procedural groom on the procedural head
-  std::string mesh;    // OBJ head/character mesh (metres, in the asset's space); empty: procedural head if bundled
+  std::string mesh;    // OBJ head/character mesh (in the asset's space); empty: procedural head if bundled
+  float mesh_scale = 1.0f;  // OBJ units to metres (bake the hair with the same --scale)
   Animation animate = Animation::turn;
   float wind = 0.0f;   // m/s^2
   bool shadows = true;

@@ -85,6 +85,8 @@ Scene build_scene(const Options& options) {
 
   if (!options.mesh.empty()) {
     scene.head = engine::load_obj_mesh(options.mesh);
+    for (engine::MeshVertex& v : scene.head.vertices)
+      for (int i = 0; i < 3; ++i) v.position[i] *= options.mesh_scale;
     scene.capsules.push_back(fit_capsule(engine::mesh_bounds(scene.head)));
   } else if (options.asset.empty()) {
     // Head sphere (the scalp the groom grows on, a hair's breadth inside it), neck and nose; the colliders are
