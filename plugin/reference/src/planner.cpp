@@ -86,12 +86,7 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     last_ = now;
   }
   if (frame.reset) pending_reset_ = true;
-  if (frame.teleport && !pending_reset_) {
-    // The state turns with the instance about the simulation origin: p' = R_now R_last^T p (the asset origin is
-    // part of the origin, so no translation remains). Composed with any teleport not yet applied.
-    pending_turn_ = normalize(quat_mul(quat_mul(now.r, conjugate(last_.r)), pending_turn_));
-    pending_teleport_ = true;
-  }
+  if (frame.teleport && !pending_reset_) add_carry(last_, now);
   if (frame.teleport || pending_reset_) {
     last_ = now;
     last_bones_ = bones_now;
@@ -113,8 +108,7 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     if (!pending_reset_) {
       const double alpha = static_cast<double>(plan.dropped_steps) / static_cast<double>(n);
       const Pose mid{mix(last_.t, now.t, alpha), slerp(last_.r, now.r, alpha)};
-      pending_turn_ = normalize(quat_mul(quat_mul(mid.r, conjugate(last_.r)), pending_turn_));
-      pending_teleport_ = true;
+      add_carry(last_, mid);
       last_ = mid;
     }
     n = settings_.time.max_steps_per_frame;
@@ -136,7 +130,7 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     pyramid = {c * wind_dir + s * u, c * wind_dir - s * u, c * wind_dir + s * v, c * wind_dir - s * v};
   }
 
-  auto make_step = [&](const Pose& pose, const std::vector<Pose>& bones, uint32_t index) {
+  auto make_step = [&](const Pose& pose, const std::vector<Pose>& bones, uint32_t index, Vec3 res) {
     Substep st;
     st.h = h_;
     st.index = index;
@@ -154,8 +148,8 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     for (uint32_t c = 0; c < frame.capsule_count; ++c) {
       const TvkCapsule& cap = frame.capsules[c];
       require(cap.r0 >= 0.0f && cap.r1 >= 0.0f, "capsules[" + std::to_string(c) + "] has a negative radius");
-      st.capsules[c].p0 = quat_rotate(pose.r, Vec3{cap.p0[0], cap.p0[1], cap.p0[2]} - a);
-      st.capsules[c].p1 = quat_rotate(pose.r, Vec3{cap.p1[0], cap.p1[1], cap.p1[2]} - a);
+      st.capsules[c].p0 = quat_rotate(pose.r, Vec3{cap.p0[0], cap.p0[1], cap.p0[2]} - a) + res;
+      st.capsules[c].p1 = quat_rotate(pose.r, Vec3{cap.p1[0], cap.p1[1], cap.p1[2]} - a) + res;
       st.capsules[c].r0 = cap.r0;
       st.capsules[c].r1 = cap.r1;
     }
@@ -171,38 +165,57 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     };
     if (skinned) {
       // asset point x (relative to the asset origin a) -> instance R_b (a + x) + t_b -> simulation space
-      // R (R_b (a + x) + t_b) + T - (T + R a) = R R_b x + R (R_b a + t_b - a).
+      // R (R_b (a + x) + t_b) + T - O = R R_b x + R (R_b a + t_b - a) + res, with res = T + R a - O.
       for (const Pose& b : bones) {
         st.skin.push_back(transform(normalize(quat_mul(pose.r, b.r)),
-                                    quat_rotate(pose.r, quat_rotate(b.r, a) + b.t - a)));
+                                    quat_rotate(pose.r, quat_rotate(b.r, a) + b.t - a) + res));
       }
     } else {
-      st.skin.push_back(transform(pose.r, Vec3{}));
+      st.skin.push_back(transform(pose.r, res));
     }
     return st;
+  };
+
+  // The simulation origin O = base + Q: base an integer number of metres, Q = (T - base + R a) rounded to the
+  // 1/1024 m grid; the remainder res = T + R a - O (< 0.5 mm) goes into the skinning and collider transforms.
+  // Origin moves are then multiples of 1/1024 m, exact in float32, so shifting the state adds no rounding, and a
+  // far instance (T ~ 10 km) gives the same shifts and remainders as one at the origin.
+  const Vec3 base{std::round(last_.t.x), std::round(last_.t.y), std::round(last_.t.z)};
+  auto grid = [](double x) { return std::ldexp(std::round(std::ldexp(x, 10)), -10); };
+  auto origin_of = [&](Vec3 t_frac, Quat r, Vec3& res) {
+    const Vec3 u = t_frac + quat_rotate(r, a);
+    const Vec3 q{grid(u.x), grid(u.y), grid(u.z)};
+    res = u - q;
+    return base + q;
   };
 
   uint32_t index = 0;
   if (pending_reset_) {
     // A reset step takes no time: it only places the state; the frame's whole steps follow.
-    Substep st = make_step(now, bones_now, index++);
+    Vec3 res;
+    origin_ = origin_of(now.t - base, now.r, res);
+    Substep st = make_step(now, bones_now, index++, res);
     st.reset = true;
     last_rot_.clear();
     for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
     plan.steps.push_back(st);
     pending_reset_ = false;
-    pending_teleport_ = false;
-    pending_turn_ = Quat{};
+    carry_pending_ = false;
+    carry_ = Carry{};
   }
 
-  Pose prev_pose = last_;
-  // The translation part of every step's origin shift is an equal slice of the frame's translation, formed as a
-  // difference first: a far-away instance (large T) then gives bit-identical shifts to one at the origin.
+  // Every step's translation is an equal slice of the frame's, formed as a difference of doubles, and the
+  // translation is handled as base + fraction, so a far instance yields bit-identical steps.
   const Vec3 slice = n > 0 ? (now.t - last_.t) / static_cast<double>(n) : Vec3{};
+  const Vec3 frac0 = last_.t - base;
   for (uint32_t k = 1; k <= n; ++k) {
     double alpha = static_cast<double>(k) / static_cast<double>(n);
     Pose pose{mix(last_.t, now.t, alpha), slerp(last_.r, now.r, alpha)};
-    if (k == n) pose = now;
+    Vec3 t_frac = frac0 + static_cast<double>(k) * slice;
+    if (k == n) {
+      pose = now;
+      t_frac = now.t - base;
+    }
     std::vector<Pose> bones;
     for (size_t b = 0; b < bones_now.size(); ++b) {
       bones.push_back(k == n ? bones_now[b]
@@ -210,14 +223,20 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
                                     slerp(last_bones_[b].r, bones_now[b].r, alpha)});
     }
     ++step_counter_;
-    Substep st = make_step(pose, bones, index++);
-    // The origin moved by (T_k - T_{k-1}) + (R_k a - R_{k-1} a).
-    st.origin_shift = slice + (quat_rotate(pose.r, a) - quat_rotate(prev_pose.r, a));
-    if (pending_teleport_) {
-      st.teleport = pending_turn_;
-      pending_teleport_ = false;
-      pending_turn_ = Quat{};
+    Vec3 res;
+    const Vec3 o = origin_of(t_frac, pose.r, res);
+    Substep st = make_step(pose, bones, index++, res);
+    if (carry_pending_) {
+      // The state, relative to the old origin, is carried rigidly (teleport or a hitch's dropped time) and
+      // re-expressed relative to the new one: p' = Rc (O_old + p) + tc - O = Rc (p - s).
+      st.teleport = carry_.r;
+      st.origin_shift = quat_rotate(conjugate(carry_.r), o - carry_.t) - origin_;
+      carry_pending_ = false;
+      carry_ = Carry{};
+    } else {
+      st.origin_shift = o - origin_;  // a multiple of 1/1024 m: exact in float32
     }
+    origin_ = o;
     st.move_state = dot(st.origin_shift, st.origin_shift) > 0.0 || st.teleport.w != 1.0;
     // Each transform's rotation since the previous step, in the frame of the (possibly turned) state: VSP's
     // rigid motion. From double-precision poses, so no float rounding of positions is amplified into it.
@@ -231,16 +250,22 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     last_rot_.clear();
     for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
     plan.steps.push_back(st);
-    prev_pose = pose;
   }
   if (n > 0) {
     last_ = now;
     last_bones_ = bones_now;
   }
-  Vec3 o = prev_pose.t + quat_rotate(prev_pose.r, a);
-  if (n == 0 && !plan.steps.empty()) o = now.t + quat_rotate(now.r, a);
-  plan.sim_origin = {o.x, o.y, o.z};
+  plan.sim_origin = {origin_.x, origin_.y, origin_.z};
   return plan;
+}
+
+void FramePlanner::add_carry(const Pose& from, const Pose& to) {
+  // World map of the instance's rigid move: w' = R_to R_from^T (w - T_from) + T_to, composed after any carry not
+  // yet applied.
+  const Quat r = normalize(quat_mul(to.r, conjugate(from.r)));
+  const Vec3 t = to.t - quat_rotate(r, from.t);
+  carry_ = Carry{normalize(quat_mul(r, carry_.r)), quat_rotate(r, carry_.t) + t};
+  carry_pending_ = true;
 }
 
 GroupStep to_group_step(const TvkSimParams& p, double h, double asset_tip_separation) {

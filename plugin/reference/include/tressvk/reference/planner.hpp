@@ -91,8 +91,14 @@ class FramePlanner {
   uint64_t step_counter_ = 0;
   bool started_ = false;
   bool pending_reset_ = true;
-  bool pending_teleport_ = false;
-  Quat pending_turn_;
+  struct Carry {  // a pending rigid move of the state (teleport, hitch): w' = r w + t, world space
+    Quat r;
+    Vec3 t;
+  };
+  void add_carry(const Pose& from, const Pose& to);
+  bool carry_pending_ = false;
+  Carry carry_;
+  Vec3 origin_;              // world position of the simulation origin of the state (double)
   Pose last_;                // instance pose at the last simulated step
   std::vector<Pose> last_bones_;
   std::vector<Quat> last_rot_;  // skin rotations of the last planned step
