@@ -160,8 +160,10 @@ TEST_CASE("render: LOD at distance draws fewer strands and stays close to the fu
   // the mean difference and on the hair's summed darkness against the background.
   const auto diff = tressvk::engine::compare_rgba8(a.pixels, b.pixels, 48);
   INFO("mean channel diff " << diff.mean_channel_diff << ", pixels over 48: " << diff.pixels_over);
+  // Measured here: mean 0.20, 38 pixels over 48. The limit on single pixels is 0.2 % of the frame (131 pixels):
+  // a thinned strand set differs pixel by pixel where a kept strand is drawn wider in place of dropped ones.
   CHECK(diff.mean_channel_diff <= 1.0);
-  CHECK(diff.pixels_over <= 40);
+  CHECK(diff.fraction_over <= 0.002);
 }
 
 TEST_CASE("render: sub-pixel hair keeps its coverage as it moves (no shimmer, no vanishing)", "[render][vulkan]") {
@@ -196,4 +198,12 @@ TEST_CASE("render: sub-pixel hair keeps its coverage as it moves (no shimmer, no
     // covers that and the rounding of the 8-bit output over the few hundred hair pixels.
     CHECK(std::abs(c - c0) <= 0.015 * c0);
   }
+}
+
+TEST_CASE("render: the scene 10 km from the world origin renders like the golden image", "[render][vulkan]") {
+  // The camera, the lights and the instance all move by 10 km; the plugin subtracts the simulation origin and
+  // the engine the eye position in double, so the GPU sees the same small numbers and the golden tolerance holds.
+  Options far = golden_options();
+  far.world_offset = {10000.0, 25.0, -10000.0};
+  check_golden(render(far).pixels, "default_scene_256");
 }

@@ -99,6 +99,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   TvkSimFrame sim{};
   sim.dt = static_cast<float>(options_.frame_time);
   sim.transform = animate(options_.animate, t);
+  for (int i = 0; i < 3; ++i) sim.transform.translation[i] += options_.world_offset[i];
   sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
   std::copy_n(scene_.capsules.begin(), sim.capsule_count, sim.capsules);
   const TvkWind wind = TVK_WIND_DEFAULT_INIT;
@@ -124,7 +125,11 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   sf.view_proj = proj * glm::lookAtRH(eye, center, glm::dvec3(0, 1, 0));
   sf.eye = eye;
   sf.head_model = model;
+  const glm::dvec3 offset(options_.world_offset[0], options_.world_offset[1], options_.world_offset[2]);
+  sf.floor_model = glm::translate(glm::dmat4(1.0), offset);
   sf.lights = scene_.lights;
+  for (TvkLight& l : sf.lights)
+    for (int i = 0; i < 3; ++i) l.position[i] += offset[i];
   sf.ambient = glm::vec3(0.16f, 0.17f, 0.2f);
   sf.shadows = options_.shadows;
   const TvkLight& key = scene_.lights[0];
@@ -207,7 +212,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
     shadow_map.near_plane = static_cast<float>(near_plane);
     shadow_map.far_plane = static_cast<float>(far_plane);
   }
-  std::vector<TvkLight> lights = scene_.lights;
+  std::vector<TvkLight> lights = sf.lights;
   if (!options_.shadows)
     for (TvkLight& l : lights) l.shadowed = 0;
   TvkDrawInfo di{};

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <map>
+#include <vector>
 
 namespace tressvk::demo {
 
@@ -58,8 +59,12 @@ int parse_options(int argc, char** argv, Options& options) {
       ->capture_default_str();
   app.add_option("--follows", options.follows, "Bundled groom: follow strands per guide")
       ->check(CLI::Range(0u, 16u))->capture_default_str();
+  std::vector<double> offset;
+  app.add_option("--world-offset", offset, "X Y Z: place the whole scene this far from the world origin (metres)")
+      ->expected(3);
   try {
     app.parse(argc, argv);
+    if (offset.size() == 3) options.world_offset = {offset[0], offset[1], offset[2]};
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }

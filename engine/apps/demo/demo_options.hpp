@@ -1,6 +1,7 @@
 // tressvk-demo's command line.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -30,6 +31,7 @@ struct Options {
   float lod_min_fraction = 0.25f;
   uint32_t guides = 1200;         // bundled groom: guides and follow hairs per guide
   uint32_t follows = 7;
+  std::array<double, 3> world_offset{};  // m: where the scene sits in the world (precision far from the origin)
   double frame_time = 1.0 / 60.0;  // s per frame (0 = the hair stays in its rest pose: renderer-only tests)
 };
 

@@ -2,6 +2,7 @@
 
 #include "tressvk_demo_spirv.h"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
@@ -106,12 +107,10 @@ SceneRenderer::SceneRenderer(engine::Device& device, VkFormat color_format, VkFo
 
 void SceneRenderer::update(uint32_t slot, const SceneFrame& frame) {
   SceneConstants c{};
-  store(frame.view_proj, c.view_proj);
-  store(frame.shadow_proj, c.shadow_proj);
-  for (int i = 0; i < 3; ++i) {
-    c.eye[i] = static_cast<float>(frame.eye[i]);
-    c.ambient[i] = frame.ambient[i];
-  }
+  const glm::dmat4 from_eye = glm::translate(glm::dmat4(1.0), frame.eye);  // eye-relative -> world
+  store(frame.view_proj * from_eye, c.view_proj);
+  store(frame.shadow_proj * from_eye, c.shadow_proj);
+  for (int i = 0; i < 3; ++i) c.ambient[i] = frame.ambient[i];  // c.eye stays 0: the eye is the origin
   c.shadow_info[0] = frame.shadows ? 1.0f : 0.0f;
   c.shadow_info[1] = 1.5f / static_cast<float>(shadow_.extent().width);  // ~1.5 texels of depth (ortho, unit box)
   const uint32_t n = std::min<uint32_t>(4, static_cast<uint32_t>(frame.lights.size()));
@@ -119,7 +118,7 @@ void SceneRenderer::update(uint32_t slot, const SceneFrame& frame) {
     const TvkLight& l = frame.lights[i];
     const glm::vec3 d = glm::normalize(glm::vec3(l.direction[0], l.direction[1], l.direction[2]));
     for (int k = 0; k < 3; ++k) {
-      c.light_pos[i][k] = static_cast<float>(l.position[k]);
+      c.light_pos[i][k] = static_cast<float>(l.position[k] - frame.eye[k]);
       c.light_dir[i][k] = d[k];
       c.light_color[i][k] = l.color[k] * l.intensity;
     }
@@ -147,12 +146,15 @@ void SceneRenderer::draw_mesh(VkCommandBuffer cmd, const engine::Pipeline& p, Vk
 }
 
 void SceneRenderer::cmd_draw_shadow(VkCommandBuffer cmd, uint32_t slot, const SceneFrame& frame) const {
-  draw_mesh(cmd, mesh_shadow_, sets_[slot][2], frame.head_model, glm::vec4(0.0f), head_count_);
+  const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -frame.eye);
+  draw_mesh(cmd, mesh_shadow_, sets_[slot][2], to_eye * frame.head_model, glm::vec4(0.0f), head_count_);
 }
 
 void SceneRenderer::cmd_draw(VkCommandBuffer cmd, uint32_t slot, const SceneFrame& frame) const {
-  draw_mesh(cmd, mesh_, sets_[slot][0], frame.head_model, glm::vec4(0.45f, 0.32f, 0.26f, 0.1f), head_count_);
-  draw_mesh(cmd, mesh_, sets_[slot][1], glm::dmat4(1.0), glm::vec4(0.16f, 0.165f, 0.18f, 0.02f), floor_count_);
+  const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -frame.eye);
+  draw_mesh(cmd, mesh_, sets_[slot][0], to_eye * frame.head_model, glm::vec4(0.45f, 0.32f, 0.26f, 0.1f), head_count_);
+  draw_mesh(cmd, mesh_, sets_[slot][1], to_eye * frame.floor_model, glm::vec4(0.16f, 0.165f, 0.18f, 0.02f),
+            floor_count_);
 }
 
 }  // namespace tressvk::demo

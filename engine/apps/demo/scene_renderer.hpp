@@ -16,13 +16,15 @@
 
 namespace tressvk::demo {
 
-// What a frame's scene passes need (world space; the demo's world stays within metres of the origin, so float
-// matrices are fine for the meshes; the hair gets its matrices in double through TvkView).
+// What a frame's scene passes need, in world space and double. The meshes are drawn camera-relative: matrices,
+// model transforms and light positions are made relative to the eye in double before they become float, so the
+// scene renders the same 10 km from the world origin (the hair gets its matrices in double through TvkView).
 struct SceneFrame {
   glm::dmat4 view_proj{1.0};
   glm::dmat4 shadow_proj{1.0};
   glm::dvec3 eye{0.0};
   glm::dmat4 head_model{1.0};   // the instance's rigid transform
+  glm::dmat4 floor_model{1.0};  // the floor's placement (the scene's world offset)
   std::vector<TvkLight> lights;
   glm::vec3 ambient{0.0f};
   bool shadows = true;
