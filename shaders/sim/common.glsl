@@ -1,6 +1,6 @@
 // Math shared by the simulation passes. Each function has a double-precision twin in
-// plugin/reference/src/model_math.hpp written in the same order of operations, so the GPU and the reference
-// round the same way up to float32.
+// plugin/reference/include/tressvk/reference/math.hpp (constants in model.hpp) written in the same order of
+// operations, so the GPU and the reference differ only by float32 rounding.
 #ifndef TRESSVK_SIM_COMMON_GLSL
 #define TRESSVK_SIM_COMMON_GLSL
 
@@ -8,7 +8,7 @@
 
 // Relative thresholds (all lengths are compared with a rest length, never with a constant in metres).
 const float kDirectionEps = 1e-4;  // an edge shorter than this fraction of its rest length has no direction
-const float kCollapse = 1.0;      // an edge shorter than this fraction of its rest length counts as collapsed
+const float kCollapse = 1.0;      // an edge shorter than this fraction of its rest length gets a blended direction
 const float kContactBand = 0.02;  // capsule contacts this deep (fraction of the radius) lose all inward velocity
 const float kFtlVelocityCorrection = 0.9;  // DFTL: share of a child's follow-the-leader move its parent gets back
 
@@ -38,10 +38,10 @@ vec4 quat_from_two_unit(vec3 a, vec3 b) {
   return normalize(vec4(cross(a, b), 1.0 + d));
 }
 
-// Turns frame q minimally so that its local +X points along edge e (rest length rest_len). An edge collapsed
-// below kCollapse of its rest length is blended with the frame's current +X by the missing part, so that its
-// direction stays defined as it vanishes (a bare normalize(e) turns float rounding into arbitrary directions);
-// above that it is e's own direction, so ordinary compression keeps the plain, best-conditioned form.
+// Turns frame q minimally so that its local +X points along edge e (rest length rest_len). An edge shorter than
+// kCollapse x its rest length is blended with the frame's current +X by the missing length, so that its direction
+// stays defined as it vanishes (a bare normalize(e) turns float rounding into arbitrary directions); at or above
+// that length it is e's own direction.
 vec4 frame_align(vec4 q, vec3 e, float rest_len) {
   vec3 x = quat_rotate(q, vec3(1, 0, 0));
   vec3 d = e + max(kCollapse * rest_len - length(e), 0.0) * x;

@@ -93,8 +93,8 @@ void main() {
       float rest = rest_info[b + v].x;
       vec3 dir = d;
       if (len < kCollapse * rest) {
-        // Collapsed: restored along its direction blended with its direction at the previous step by the missing
-        // part, which stays defined as the segment vanishes (normalize(d) would not).
+        // Compressed: restored along its direction blended with its direction at the previous step by the missing
+        // length, which stays defined as the segment vanishes (normalize(d) would not).
         vec3 was = prev[b + v + 1u].xyz - prev[b + v].xyz;
         float wl = length(was);
         if (wl > kDirectionEps * rest) dir = d + (kCollapse * rest - len) * (was / wl);

@@ -63,9 +63,9 @@ inline Quat quat_from_two_unit(Vec3 a, Vec3 b) {
   }
   return normalize(make_quat(cross(a, b), 1.0 + d));
 }
-// Turns frame q minimally so that its local +X points along edge e (rest length rest_len); an edge collapsed
-// below 1/4 of its rest length is blended with the frame's +X by the missing part (see frame_align in
-// common.glsl; the constants are kCollapse and kDirectionEps there and in model.hpp).
+// Turns frame q minimally so that its local +X points along edge e (rest length rest_len); an edge shorter than
+// its rest length is blended with the frame's +X by the missing length (see frame_align in common.glsl; the
+// constants are kCollapse and kDirectionEps there and in model.hpp).
 inline constexpr double kCollapseAlign = 1.0;  // = kCollapse in model.hpp
 inline Quat frame_align(Quat q, Vec3 e, double rest_len) {
   const Vec3 x = quat_rotate(q, Vec3{1, 0, 0});

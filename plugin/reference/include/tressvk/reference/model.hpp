@@ -28,8 +28,8 @@ inline constexpr double kFtlVelocityCorrection = 0.9;
 // Capsule contacts deeper than this fraction of the radius lose all their inward velocity; shallower ones in
 // proportion (a continuous response). GLSL twin: kContactBand.
 inline constexpr double kContactBand = 0.02;
-// An edge shorter than this fraction of its rest length counts as collapsed: its direction is blended with its
-// previous one (length constraints) or the frame's axis (local shape). GLSL twin: kCollapse.
+// An edge shorter than this fraction of its rest length gets its direction blended with its previous one (length
+// constraints) or the frame's axis (local shape) by the missing length. GLSL twin: kCollapse.
 inline constexpr double kCollapse = 1.0;
 // Strands shorter than this fraction of the groom's median strand length are carried rigidly (all pinned): short
 // hair barely bends under its own weight (the gravito-bending length of a human hair is about 4.5 cm), and such a
