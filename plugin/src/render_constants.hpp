@@ -21,7 +21,7 @@ struct alignas(16) GpuMaterial {
   float tip[4];    // rgb, ks1
   float spec[4];   // ex1, ks2, ex2, shift1
   float shape[4];  // shift2, width, tip ratio, opacity
-  float fiber[4];  // spacing, alpha
+  float fiber[4];  // spacing, alpha, colour variation
 };
 
 struct alignas(16) DrawConstants {

@@ -30,8 +30,10 @@ void fill_material(const TvkHairMaterial& m, GpuMaterial& g) {
   g = GpuMaterial{{m.base_color[0], m.base_color[1], m.base_color[2], m.kd},
                   {m.tip_color[0], m.tip_color[1], m.tip_color[2], m.ks1},
                   {m.ex1, m.ks2, m.ex2, m.shift1},
-                  {m.shift2, m.strand_width, std::clamp(m.tip_width_ratio, 0.0f, 1.0f), std::clamp(m.opacity, 0.0f, 1.0f)},
-                  {m.fiber_spacing, std::clamp(m.fiber_alpha, 0.0f, 1.0f), 0.0f, 0.0f}};
+                  {m.shift2, m.strand_width, std::clamp(m.tip_width_ratio, 0.0f, 1.0f),
+                   std::clamp(m.opacity, 0.0f, 1.0f)},
+                  {m.fiber_spacing, std::clamp(m.fiber_alpha, 0.0f, 1.0f), std::clamp(m.color_variation, 0.0f, 1.0f),
+                   0.0f}};
 }
 
 bool finite_view(const TvkView& v) {

@@ -10,6 +10,7 @@ layout(location = 2) noperspective out float o_offset_px;
 layout(location = 3) noperspective out float o_width_px;
 layout(location = 4) out float o_along;
 layout(location = 5) flat out uint o_group;
+layout(location = 6) flat out float o_tint;
 
 void main() {
   const Expanded e = expand_vertex(uint(gl_VertexIndex));
@@ -19,4 +20,5 @@ void main() {
   o_width_px = e.width_px;
   o_along = e.along;
   o_group = e.group;
+  o_tint = e.tint;
 }

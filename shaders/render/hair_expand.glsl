@@ -12,7 +12,18 @@ struct Expanded {
   float width_px;     // projected strand width, pixels
   float along;        // 0 at the root, 1 at the tip
   uint group;
+  float tint;         // per-strand colour factor (colour variation)
 };
+
+// A well-mixed 32-bit hash of the strand index: the same strand always gets the same tint.
+float strand_hash(uint x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return float(x) * (1.0 / 4294967296.0);
+}
 
 Expanded expand_vertex(uint vertex_id) {
   const uint kEnd[6] = uint[6](0u, 0u, 1u, 1u, 0u, 1u);
@@ -30,6 +41,7 @@ Expanded expand_vertex(uint vertex_id) {
   e.along = float(v) / float(n - 1u);
   e.group = min(guide_info[strand % dc.counts.y].x, 15u);
   const Material m = dc.materials[e.group];
+  e.tint = 1.0 + m.fiber.z * (2.0 * strand_hash(strand) - 1.0);
   const float width = m.shape.y * mix(1.0, m.shape.z, e.along) * dc.lod.x;
 
   const vec4 clip = dc.view_proj * vec4(e.position, 1.0);

@@ -14,7 +14,7 @@ struct Material {
   vec4 tip;        // rgb tip colour, w: ks1
   vec4 spec;       // x: ex1, y: ks2, z: ex2, w: shift1
   vec4 shape;      // x: shift2, y: strand width (m), z: tip width ratio, w: opacity
-  vec4 fiber;      // x: fibre spacing (strand widths), y: fibre alpha
+  vec4 fiber;      // x: fibre spacing (strand widths), y: fibre alpha, z: colour variation
 };
 
 layout(std140, set = 0, binding = 0) uniform DrawConstants {

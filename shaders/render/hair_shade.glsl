@@ -18,6 +18,7 @@ layout(location = 2) noperspective in float i_offset_px;
 layout(location = 3) noperspective in float i_width_px;
 layout(location = 4) in float i_along;
 layout(location = 5) flat in uint i_group;
+layout(location = 6) flat in float i_tint;
 
 layout(location = 0) out vec4 o_color;
 
@@ -66,7 +67,7 @@ void main() {
     if (alpha >= kCoreCoverage || alpha < 1.0 / 255.0) discard;
   }
 
-  const vec3 base = mix(m.base.rgb, m.tip.rgb, i_along);
+  const vec3 base = mix(m.base.rgb, m.tip.rgb, i_along) * i_tint;
   const vec3 t = normalize(i_tangent);
   const vec3 e = dc.eye.w > 0.5 ? -dc.view_dir.xyz : normalize(dc.eye.xyz - i_position);
   const float te = clamp(dot(t, e), -1.0, 1.0);

@@ -130,7 +130,8 @@ Scene build_scene(const Options& options) {
 
   // Floor a little below the lowest point.
   const float floor_y = static_cast<float>(lo[1] - 0.05 * scene.radius);
-  scene.floor = engine::make_floor_mesh({static_cast<float>(scene.center[0]), floor_y, static_cast<float>(scene.center[2])},
+  scene.floor = engine::make_floor_mesh(
+      {static_cast<float>(scene.center[0]), floor_y, static_cast<float>(scene.center[2])},
                                         static_cast<float>(4.0 * scene.radius));
 
   // Key light (shadowed) from the upper front left, a warm fill spot from the right, a cool rim from behind.
@@ -168,7 +169,8 @@ TvkInstanceTransform animate(Animation animation, double t) {
       break;
   }
   // q = yaw about y, then pitch about x.
-  const double cy = std::cos(0.5 * yaw), sy = std::sin(0.5 * yaw), cp = std::cos(0.5 * pitch), sp = std::sin(0.5 * pitch);
+  const double cy = std::cos(0.5 * yaw), sy = std::sin(0.5 * yaw);
+  const double cp = std::cos(0.5 * pitch), sp = std::sin(0.5 * pitch);
   x.rotation[0] = cy * sp;
   x.rotation[1] = sy * cp;
   x.rotation[2] = -sy * sp;

@@ -66,10 +66,12 @@ typedef struct TvkHairMaterial {
   float opacity;                      /* 0..1, multiplies the pixel coverage */
   float fiber_spacing;                /* self-shadowing: depth per occluding fibre, in strand widths */
   float fiber_alpha;                  /* self-shadowing: light absorbed by one fibre, 0..1 */
+  float color_variation;              /* 0..1: each strand's colour is scaled by a fixed per-strand factor in
+                                         [1 - v, 1 + v] (real hair is never one flat colour) */
 } TvkHairMaterial;
 #define TVK_HAIR_MATERIAL_DEFAULT_INIT \
-  { { 0.045f, 0.022f, 0.011f }, { 0.10f, 0.056f, 0.03f }, 0.7f, 0.22f, 80.0f, 0.45f, 20.0f, 0.10f, -0.20f, \
-    0.0006f, 0.3f, 1.0f, 5.0f, 0.35f }
+  { { 0.045f, 0.022f, 0.011f }, { 0.10f, 0.056f, 0.03f }, 0.7f, 0.15f, 80.0f, 0.45f, 20.0f, 0.10f, -0.20f, \
+    0.0006f, 0.3f, 1.0f, 5.0f, 0.35f, 0.25f }
 
 typedef enum TvkLightType { TVK_LIGHT_DIRECTIONAL = 0, TVK_LIGHT_SPOT = 1 } TvkLightType;
 
