@@ -132,7 +132,7 @@ Scene build_scene(const Options& options) {
   const float floor_y = static_cast<float>(lo[1] - 0.05 * scene.radius);
   scene.floor = engine::make_floor_mesh(
       {static_cast<float>(scene.center[0]), floor_y, static_cast<float>(scene.center[2])},
-                                        static_cast<float>(4.0 * scene.radius));
+      static_cast<float>(4.0 * scene.radius));
 
   // Key light (shadowed) from the upper front left, a warm fill spot from the right, a cool rim from behind.
   scene.lights.push_back(directional({0.45f, -0.75f, -0.5f}, {1.0f, 0.96f, 0.9f}, 2.2f, options.shadows));
