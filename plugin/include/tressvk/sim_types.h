@@ -93,7 +93,8 @@ typedef struct TvkTimeSettings {
                                per step, well under the sub-millimetre segments of real grooms such as the Ratboy
                                mohawk, where 120 Hz (0.68 mm per step) made the model's response to float32
                                rounding 10x larger; and 30/60/120/144 fps hosts all simulate on the same grid) */
-  uint32_t max_steps_per_frame; /* 1..TVK_MAX_STEPS_PER_FRAME. Default 8 (a 30 fps frame still runs in full) */
+  uint32_t max_steps_per_frame; /* 1..TVK_MAX_STEPS_PER_FRAME, the reset step of a resetting frame included.
+                               Default 8 (a 30 fps frame still runs in full) */
 } TvkTimeSettings;
 
 #define TVK_TIME_SETTINGS_DEFAULT_INIT { 240.0f, 8u }

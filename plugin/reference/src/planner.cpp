@@ -100,8 +100,10 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   FramePlan plan;
   plan.skinned = skinned;
   accumulator_ = std::max(0.0, accumulator_ - whole);
-  if (n > settings_.time.max_steps_per_frame) {
-    plan.dropped_steps = n - settings_.time.max_steps_per_frame;
+  // A reset step counts toward the cap, so a frame never plans more than max_steps_per_frame steps in all.
+  const uint32_t step_cap = settings_.time.max_steps_per_frame - (pending_reset_ ? 1u : 0u);
+  if (n > step_cap) {
+    plan.dropped_steps = n - step_cap;
     // Hitch: the instance motion of the dropped steps carries the hair rigidly (like a teleport: no velocity is
     // added), and the last max_steps_per_frame steps simulate the end of the motion at its real speed. Squeezing
     // the whole motion into the kept steps would multiply velocities by n/max (16 m/s hair tips for a head turn).
@@ -111,7 +113,7 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
       add_carry(last_, mid);
       last_ = mid;
     }
-    n = settings_.time.max_steps_per_frame;
+    n = step_cap;
   }
 
   const Vec3 a = asset_origin_vec(asset_origin_);

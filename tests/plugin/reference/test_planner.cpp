@@ -30,7 +30,10 @@ TvkSimFrame still_frame(double dt) {
 
 // All non-reset step times of a sequence of frames of length dt adding up to `total`.
 std::vector<double> step_times(double dt, int frames) {
-  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
+  // A cap high enough never to bind: invariance under frame splitting holds as long as no step is dropped.
+  TvkSimSettings s = settings_120hz();
+  s.time.max_steps_per_frame = 8;
+  FramePlanner planner(s, {0, 0, 0}, 0);
   std::vector<double> times;
   for (int i = 0; i < frames; ++i) {
     for (const Substep& s : planner.plan(still_frame(dt)).steps) {
@@ -68,6 +71,13 @@ TEST_CASE("planner: every step has the fixed length and the first frame resets",
   FramePlan second = planner.plan(still_frame(1.0 / 60.0));
   REQUIRE(second.steps.size() == 2);
   CHECK_FALSE(second.steps[0].reset);
+}
+
+TEST_CASE("planner: a frame never plans more steps than the cap, the reset step included", "[reference][planner]") {
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
+  FramePlan first = planner.plan(still_frame(0.25));
+  CHECK(first.steps.size() == 4);  // the reset step and 3 steps
+  CHECK(first.steps[0].reset);
 }
 
 TEST_CASE("planner: a 0.25 s hitch is capped and the surplus dropped, not owed", "[reference][planner]") {
