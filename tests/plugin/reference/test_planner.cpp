@@ -31,9 +31,9 @@ TvkSimFrame still_frame(double dt) {
 // All non-reset step times of a sequence of frames of length dt adding up to `total`.
 std::vector<double> step_times(double dt, int frames) {
   // A cap high enough never to bind: invariance under frame splitting holds as long as no step is dropped.
-  TvkSimSettings s = settings_120hz();
-  s.time.max_steps_per_frame = 8;
-  FramePlanner planner(s, {0, 0, 0}, 0);
+  TvkSimSettings settings = settings_120hz();
+  settings.time.max_steps_per_frame = 8;
+  FramePlanner planner(settings, {0, 0, 0}, 0);
   std::vector<double> times;
   for (int i = 0; i < frames; ++i) {
     for (const Substep& s : planner.plan(still_frame(dt)).steps) {
