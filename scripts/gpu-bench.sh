@@ -33,7 +33,9 @@ for scene in settle shake run teleport wind hitch far; do
 done
 run "straight-4096-shake" --builtin straight --guides 4096 --scene shake
 run "long128-1024-shake" --builtin long128 --guides 1024 --scene shake
-[ -f "${MOHAWK:-}" ] && run "ratboy-mohawk-2follows-shake" --asset "$MOHAWK" --scene shake
+if [ -f "${MOHAWK:-}" ]; then
+  for scene in settle shake run; do run "ratboy-2follows-$scene" --asset "$MOHAWK" --scene "$scene"; done
+fi
 # Scaling with the guide count: the step error is sampled and the free-running reference skipped, so the CPU
 # reference stays affordable.
 for g in 1024 16384 65536; do
@@ -43,7 +45,7 @@ done
 for it in 1 2 8; do
   run "curly-4096-shake-len$it" --builtin curly --guides 4096 --scene shake --length-iterations "$it" --step-error-every 5
 done
-for rate in 60 240; do
+for rate in 120 480; do
   run "curly-4096-shake-rate$rate" --builtin curly --guides 4096 --scene shake --step-rate "$rate" --step-error-every 5
 done
 echo "done: $OUT"
