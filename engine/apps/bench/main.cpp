@@ -115,6 +115,8 @@ int main(int argc, char** argv) {
   compare->add_option("--length-iterations", o.params.length_iterations)->capture_default_str();
   compare->add_option("--json", json_path, "write the results as JSON");
   compare->add_option("--device", device, "device index or name substring (default: discrete GPU first)");
+  bool table_row = false;
+  compare->add_flag("--table-row", table_row, "print one Markdown table row instead of the report");
   bool validation = false;
   compare->add_flag("--validation", validation, "enable the Vulkan validation layer");
   CLI11_PARSE(app, argc, argv);
@@ -146,7 +148,17 @@ int main(int argc, char** argv) {
       groom_name = builtin;
     }
     const bench::CompareResult r = bench::run_compare(dev, groom, groom_name, o);
-    print_table(r);
+    if (table_row) {
+      // | groom | guides x N (+K follows) | scene | steps/frame | GPU ms/frame | step error max | trajectory rms |
+      // stretch max | NaN/exploded |
+      char traj[32] = "-";
+      if (o.trajectory) std::snprintf(traj, sizeof traj, "%.2g", r.trajectory_error_rms_rel);
+      std::printf("| %s | %u x %u (+%u) | %s | %.2f | %.3f | %.2g | %s | %.2g | %u/%u |\n", r.groom.c_str(), r.guides,
+                  r.vertices_per_strand, r.follows, r.scene.c_str(), r.steps_per_frame, r.gpu_ms_per_frame,
+                  r.step_error_max_rel, traj, r.stretch_max, r.nan_strands, r.exploded_strands);
+    } else {
+      print_table(r);
+    }
     if (!json_path.empty()) {
       std::ofstream f(json_path);
       f << to_json(r, o).dump(2) << "\n";
