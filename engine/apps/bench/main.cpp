@@ -15,6 +15,7 @@
 
 #include <clocale>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -142,7 +143,7 @@ int main(int argc, char** argv) {
         return 2;
       }
       groom = std::move(read.asset);
-      groom_name = asset_path;
+      groom_name = std::filesystem::path(asset_path).filename().string();
     } else {
       groom = baker::make_builtin_groom(builtin, groom_options);
       groom_name = builtin;
