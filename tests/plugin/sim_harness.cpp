@@ -2,6 +2,7 @@
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
+#include <tressvk/engine/hair_readback.hpp>
 
 #include <catch2/catch_test_macros.hpp>
 
@@ -69,39 +70,11 @@ void run_frame_batched(TvkContext ctx, const std::vector<GpuInstance*>& instance
 }
 
 void GpuInstance::read_state() {
-  TvkInstanceBuffers b{};
-  REQUIRE(tressvk_get_instance_buffers(instance_, &b) == TVK_SUCCESS);
-  engine::Buffer pos = make_buffer(b.positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
-  engine::Buffer prev =
-      make_buffer(b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
-  engine::Buffer prevprev =
-      make_buffer(b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
-  engine::Buffer tan = make_buffer(b.tangents_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
-  run_commands([&](VkCommandBuffer cmd) {
-    // The simulation leaves its writes visible to shader reads; a host copy brings its own barrier.
-    VkMemoryBarrier2 barrier{};
-    barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    VkDependencyInfo dep{};
-    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    VkBufferCopy region{0, 0, b.positions_size};
-    vkCmdCopyBuffer(cmd, b.positions, pos.handle(), 1, &region);
-    region.size = b.previous_positions_size;
-    vkCmdCopyBuffer(cmd, b.previous_positions, prev.handle(), 1, &region);
-    vkCmdCopyBuffer(cmd, b.previous_previous_positions, prevprev.handle(), 1, &region);
-    region.size = b.tangents_size;
-    vkCmdCopyBuffer(cmd, b.tangents, tan.handle(), 1, &region);
-  });
-  state_.pos = read_buffer<sim::Vec4>(pos);
-  state_.prev = read_buffer<sim::Vec4>(prev);
-  state_.tangent = read_buffer<sim::Vec4>(tan);
-  state_.prevprev = read_buffer<sim::Vec4>(prevprev);
+  engine::HairState s = engine::read_hair_state(device(), instance_);
+  state_.pos = std::move(s.positions);
+  state_.prev = std::move(s.previous);
+  state_.prevprev = std::move(s.previous_previous);
+  state_.tangent = std::move(s.tangents);
 }
 
 std::vector<std::string> GpuInstance::recorded_passes() const {

@@ -2,6 +2,7 @@
 
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/check.hpp>
+#include <tressvk/engine/hair_readback.hpp>
 #include <tressvk/asset_io.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>
@@ -32,45 +33,6 @@ double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
-}
-
-struct State {
-  std::vector<sim::Vec4> pos, prev, prevprev;
-};
-
-// Copies the instance's state into host-readable buffers (after the simulation's writes).
-State read_state(const engine::Device& dev, TvkInstance inst) {
-  TvkInstanceBuffers b{};
-  tressvk_get_instance_buffers(inst, &b);
-  engine::Buffer pos = engine::create_buffer(dev, b.positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                             engine::MemoryUsage::readback);
-  engine::Buffer prev = engine::create_buffer(dev, b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                              engine::MemoryUsage::readback);
-  engine::Buffer prevprev = engine::create_buffer(dev, b.previous_positions_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                  engine::MemoryUsage::readback);
-  dev.run_commands([&](VkCommandBuffer cmd) {
-    VkMemoryBarrier2 barrier{};
-    barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    VkDependencyInfo dep{};
-    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
-    VkBufferCopy region{0, 0, b.positions_size};
-    vkCmdCopyBuffer(cmd, b.positions, pos.handle(), 1, &region);
-    region.size = b.previous_positions_size;
-    vkCmdCopyBuffer(cmd, b.previous_positions, prev.handle(), 1, &region);
-    vkCmdCopyBuffer(cmd, b.previous_previous_positions, prevprev.handle(), 1, &region);
-  });
-  State s;
-  s.pos = engine::read_buffer_as<sim::Vec4>(dev, pos, b.positions_size / sizeof(sim::Vec4));
-  s.prev = engine::read_buffer_as<sim::Vec4>(dev, prev, b.previous_positions_size / sizeof(sim::Vec4));
-  s.prevprev = engine::read_buffer_as<sim::Vec4>(dev, prevprev, b.previous_positions_size / sizeof(sim::Vec4));
-  return s;
 }
 
 }  // namespace
@@ -123,7 +85,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   std::map<std::string, uint32_t> pass_dispatches;
   double traj_sum_sq = 0, stretch_mean_sum = 0;
   uint64_t traj_count = 0, steps_total = 0;
-  State state;  // GPU state after the previous frame, when it was read back
+  engine::HairState state;  // GPU state after the previous frame, when it was read back
   bool state_is_previous = false;
   const uint32_t total = opt.warmup + opt.frames;
   const uint32_t every = std::max(1u, opt.step_error_every);
@@ -132,7 +94,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
     const bool timed = f >= opt.warmup;
     const TvkSimFrame frame = reference::scene_frame(opt.scene, f, geometry);
     const bool step_error_now = measured(f) && state_is_previous;
-    if (step_error_now) step_ref.set_state(state.pos, state.prev, state.prevprev);
+    if (step_error_now) step_ref.set_state(state.positions, state.previous, state.previous_previous);
     const auto t0 = std::chrono::steady_clock::now();
     const reference::FramePlan plan = opt.trajectory ? traj_ref.advance(frame) : traj_ref.planner().plan(frame);
     const auto t1 = std::chrono::steady_clock::now();
@@ -167,25 +129,25 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
 
     state_is_previous = false;
     if (!measured(f) && !measured(f + 1)) continue;
-    state = read_state(dev, inst);
+    state = engine::read_hair_state(dev, inst);
     state_is_previous = true;
     if (!measured(f)) continue;
     if (step_error_now) {
-      const auto e = reference::position_error(std::span<const sim::Vec4>(state.pos), step_ref.positions(), median_length);
+      const auto e = reference::position_error(std::span<const sim::Vec4>(state.positions), step_ref.positions(), median_length);
       step_errors.push_back(e.max_rel);
       out.step_error_max_rel = std::max(out.step_error_max_rel, e.max_rel);
     }
     if (opt.trajectory) {
       const auto te =
-          reference::position_error(std::span<const sim::Vec4>(state.pos), traj_ref.positions(), median_length);
+          reference::position_error(std::span<const sim::Vec4>(state.positions), traj_ref.positions(), median_length);
       traj_sum_sq += te.rms_rel * te.rms_rel;
       out.trajectory_error_max_rel = std::max(out.trajectory_error_max_rel, te.max_rel);
     }
     ++traj_count;
-    const auto st = reference::stretch(std::span<const sim::Vec4>(state.pos), step_ref.rest());
+    const auto st = reference::stretch(std::span<const sim::Vec4>(state.positions), step_ref.rest());
     stretch_mean_sum += st.mean;
     out.stretch_max = std::max(out.stretch_max, st.max);
-    const auto h = reference::health(std::span<const sim::Vec4>(state.pos), step_ref.rest());
+    const auto h = reference::health(std::span<const sim::Vec4>(state.positions), step_ref.rest());
     out.nan_strands = std::max(out.nan_strands, h.nan_strands);
     out.exploded_strands = std::max(out.exploded_strands, h.exploded_strands);
   }
