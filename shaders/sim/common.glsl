@@ -38,13 +38,25 @@ vec4 quat_from_two_unit(vec3 a, vec3 b) {
   return normalize(vec4(cross(a, b), 1.0 + d));
 }
 
+// Fold guard: the amount of unit vector u to add to vector e (length el) so that e never points against u. Zero
+// while e is within 90 degrees of u; beyond, 2 el cos^2 (C1 at 90 degrees), so a reversed e (cos = -1) becomes
+// el * u. Without it a folded segment (one turned back on the frame's axis or on its own previous direction) gives
+// a minimal rotation near a half turn, whose axis is undefined, or a blended direction near zero: float rounding
+// then chooses the frame. With it the turn taken over one edge is at most about 97 degrees and a continuous,
+// Lipschitz function of the edge, and it shrinks to nothing as the edge reverses.
+float fold_guard(vec3 e, float el, vec3 u) {
+  float eu = dot(e, u);
+  return (eu < 0.0 && el > 0.0) ? 2.0 * (eu * eu / el) : 0.0;
+}
+
 // Turns frame q minimally so that its local +X points along edge e (rest length rest_len). An edge shorter than
 // kCollapse x its rest length is blended with the frame's current +X by the missing length, so that its direction
 // stays defined as it vanishes (a bare normalize(e) turns float rounding into arbitrary directions); at or above
-// that length it is e's own direction.
+// that length, and within 90 degrees of +X, it is e's own direction; beyond 90 degrees the fold guard applies.
 vec4 frame_align(vec4 q, vec3 e, float rest_len) {
   vec3 x = quat_rotate(q, vec3(1, 0, 0));
-  vec3 d = e + max(kCollapse * rest_len - length(e), 0.0) * x;
+  float el = length(e);
+  vec3 d = e + (max(kCollapse * rest_len - el, 0.0) + fold_guard(e, el, x)) * x;
   float len = length(d);
   if (!(len > kDirectionEps * rest_len)) return q;
   return normalize(quat_mul(quat_from_two_unit(x, d / len), q));
@@ -105,6 +117,21 @@ vec4 skin_delta(uint g) {
     return normalize(q);
   }
   return skin[pc.skin_base + 4u];
+}
+
+// The same blend of the previous step's rotation since the one before (what integration carried as velocity).
+vec4 skin_delta_before(uint g) {
+  if (TVK_HAS(TVK_FEATURE_SKINNING)) {
+    uvec4 bi = bone_index[g];
+    vec4 bw = bone_weight[g];
+    vec4 q = vec4(0);
+    for (uint i = 0u; i < 4u; ++i) {
+      if (bw[i] == 0.0) continue;
+      q += bw[i] * skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + 5u];
+    }
+    return normalize(q);
+  }
+  return skin[pc.skin_base + 5u];
 }
 
 // The guide's root frame now: the skinned rest root frame, turned onto the current root edge when that edge is

@@ -32,9 +32,19 @@ void main() {
     // origin): both are rigid, applied to the whole history, so they add no velocity.
     vec3 shift = step_params[pc.step_index].origin_shift.xyz;
     vec4 turn = step_params[pc.step_index].teleport;
-    p = quat_rotate(turn, p - shift);
-    q = quat_rotate(turn, q - shift);
-    r = quat_rotate(turn, r - shift);
+    // The shift alone is exact (a multiple of 1/1024 m). With a turn, only p is carried as a point and the history
+    // follows as turned differences, so the turn's rounding is common to all three and adds no velocity.
+    if (all(equal(turn.xyz, vec3(0.0)))) {
+      p -= shift;
+      q -= shift;
+      r -= shift;
+    } else {
+      vec3 pq = quat_rotate(turn, p - q);
+      vec3 qr = quat_rotate(turn, q - r);
+      p = quat_rotate(turn, p - shift);
+      q = p - pq;
+      r = q - qr;
+    }
   }
 
   vec3 next;

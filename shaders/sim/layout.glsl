@@ -51,8 +51,9 @@ layout(std430, set = 0, binding = 11) readonly buffer BoneWeights { vec4 bone_we
 // Skinning, per substep s and bone b, TVK_SKIN_VEC4 vec4 at skin[pc.skin_base + TVK_SKIN_VEC4*b] (pc.skin_base
 // selects the substep): [0..2] rows of the affine 3x4 map from asset space (rest positions) to simulation space,
 // instance motion included; [3] the rotation of that map as a quaternion (x,y,z,w); [4] its rotation since the
-// previous step (identity at a reset), computed in double on the host: the rigid motion VSP propagates.
-#define TVK_SKIN_VEC4 5u
+// previous step (identity at a reset), computed in double on the host: the rigid motion VSP propagates; [5] the
+// previous step's [4], in this step's frame (turned with a teleport or carry; identity after a reset).
+#define TVK_SKIN_VEC4 6u
 layout(std430, set = 0, binding = 12) readonly buffer Skin { vec4 skin[]; };
 
 struct GroupParams {            // per strand group; std430, 48 bytes. Everything already per step (h folded in).
@@ -71,13 +72,14 @@ struct GroupParams {            // per strand group; std430, 48 bytes. Everythin
 };
 layout(std430, set = 0, binding = 13) readonly buffer Groups { GroupParams group[]; };
 
-struct StepParams {             // per substep; std430, 384 bytes. Everything in simulation space, per step.
+struct StepParams {             // per substep; std430, 640 bytes. Everything in simulation space, per step.
   vec4 gravity;                 // xyz: g * h^2 (m); w: h (s)
   vec4 origin_shift;            // xyz: move of the simulation origin since the last step; subtracted from the state
   vec4 teleport;                // quaternion (x,y,z,w) turning the state about the origin (identity when none)
   uvec4 flags;                  // x: TVK_STEP_* bits; y: substep index within the frame; z, w: 0
   vec4 wind[4];                 // xyz: wind acceleration * h^2 (m), the pyramid blended per strand; w: 0
   vec4 capsule[16];             // capsule c: [2c] = (p0, r0), [2c+1] = (p1, r1)
+  vec4 capsule_move[16];        // capsule c: [2c].xyz = move of p0 since the last step, [2c+1].xyz = of p1
 };
 layout(std430, set = 0, binding = 14) readonly buffer Steps { StepParams step_params[]; };
 

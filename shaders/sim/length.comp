@@ -45,6 +45,8 @@ void main() {
       for (uint c = 0u; c < CAPSULE_COUNT; ++c) {
         vec4 c0 = step_params[pc.step_index].capsule[2u * c];
         vec4 c1 = step_params[pc.step_index].capsule[2u * c + 1u];
+        vec3 m0 = step_params[pc.step_index].capsule_move[2u * c].xyz;
+        vec3 m1 = step_params[pc.step_index].capsule_move[2u * c + 1u].xyz;
         vec3 axis = c1.xyz - c0.xyz;
         float aa = dot(axis, axis);
         float t = aa > 0.0 ? clamp(dot(x - c0.xyz, axis) / aa, 0.0, 1.0) : 0.0;
@@ -62,11 +64,12 @@ void main() {
           float bl = length(back);
           nrm = bl > kDirectionEps * radius ? back / bl : vec3(0, 1, 0);
         }
-        // Remove only velocity into the surface (tangential motion slides on), fully once the vertex was deeper
+        // Remove only velocity into the surface relative to the surface's own move this step (tangential motion
+        // slides on; hair resting on a moving head keeps the head's velocity), fully once the vertex was deeper
         // than kContactBand * radius and in proportion below that, so the response is continuous in the state.
         float depth = radius - dist;
         x = centre + radius * nrm;
-        float vn = dot(x - y, nrm);
+        float vn = dot((x - y) - (m0 + t * (m1 - m0)), nrm);
         if (vn < 0.0) y += min(depth / (kContactBand * radius), 1.0) * vn * nrm;
         hit = true;
       }
@@ -92,12 +95,15 @@ void main() {
       float len = length(d);
       float rest = rest_info[b + v].x;
       vec3 dir = d;
-      if (len < kCollapse * rest) {
-        // Compressed: restored along its direction blended with its direction at the previous step by the missing
-        // length, which stays defined as the segment vanishes (normalize(d) would not).
-        vec3 was = prev[b + v + 1u].xyz - prev[b + v].xyz;
-        float wl = length(was);
-        if (wl > kDirectionEps * rest) dir = d + (kCollapse * rest - len) * (was / wl);
+      // Compressed: restored along its direction blended with its direction at the previous step by the missing
+      // length, which stays defined as the segment vanishes (normalize(d) would not); turned back on that
+      // direction (a flip within one step), also by the fold guard, so that the blend never nears zero.
+      vec3 was = prev[b + v + 1u].xyz - prev[b + v].xyz;
+      float wl = length(was);
+      if (wl > kDirectionEps * rest) {
+        vec3 u = was / wl;
+        float blend = max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
+        if (blend > 0.0) dir = d + blend * u;
       }
       float dl = length(dir);
       if (!(dl > 0.0)) continue;
@@ -125,12 +131,21 @@ void main() {
   bool ok = true;
   for (uint v = 0u; v < N; ++v) ok = ok && finite3(pos[b + v].xyz) && finite3(prev[b + v].xyz);
   if (!ok) {
+    // The history is the rest pose carried back by this step's rigid motion, so the strand moves on with the head
+    // (VSP assumes that integration carries the head's previous motion); a non-finite root history falls back to
+    // zero velocity.
+    vec3 p0 = skin_point(g, rest_pos[b].xyz);
+    vec3 q0 = prev[b].xyz;
+    if (!finite3(q0)) q0 = p0;
+    vec4 back = skin_delta(g);
+    back = vec4(-back.xyz, back.w);
     for (uint v = 0u; v < N; ++v) {
       vec4 rest = rest_pos[b + v];
-      vec4 p = vec4(skin_point(g, rest.xyz), rest.w);
-      pos[b + v] = p;
-      prev[b + v] = p;
-      prevprev[b + v] = p;
+      vec3 p = skin_point(g, rest.xyz);
+      vec4 y = vec4(q0 + quat_rotate(back, p - p0), rest.w);
+      pos[b + v] = vec4(p, rest.w);
+      prev[b + v] = y;
+      prevprev[b + v] = y;
     }
     atomicAdd(counters[pc.counter_index], 1u);
   }

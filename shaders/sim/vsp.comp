@@ -1,7 +1,7 @@
 // Pass 2, one thread per guide vertex (v >= 2, movable): velocity shock propagation. Each thread derives its
 // strand's root rigid motion of this step itself (the skinning rotation since the previous step about the root
 // vertex, plus the root vertex's translation), so no strand-level pass or buffer is needed; then moves the vertex
-// and its previous position by coefficient * (rigid motion), which keeps the velocity relative to the root.
+// by coefficient * (this step's rigid motion - the damped previous one that integration already carried).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "sim/common.glsl"
@@ -21,7 +21,7 @@ void main() {
   uint b = g * N;
   vec3 p0 = pos[b].xyz, p1 = pos[b + 1u].xyz;
   vec3 q0 = prev[b].xyz, q1 = prev[b + 1u].xyz;
-  vec3 r1 = prevprev[b + 1u].xyz;
+  vec3 r0 = prevprev[b].xyz, r1 = prevprev[b + 1u].xyz;
 
   // Above the acceleration threshold the whole strand follows the root rigidly; the coefficient ramps up over
   // [0.75, 1] x threshold so that it is a continuous function of the state.
@@ -33,11 +33,15 @@ void main() {
   // the translation follows from the root vertex's move. Deriving the rotation from the root edge instead would
   // amplify float rounding of the pinned vertices by strand length / root edge length.
   vec4 swing = skin_delta(g);
-  // rigid(x) - x = (p0 - q0) + (swing * (x - q0) - (x - q0)), written without large cancellations.
-  vec3 t = p0 - q0;
+  // The rigid motion of this step at the vertex's start-of-step position y, less the previous step's rigid motion
+  // (at its position z then) that integrate already carried, damped, as velocity: with c = 1 a strand moving with
+  // the head keeps moving with it, and c < 1 leaves the strand (1 - c) of the head's acceleration only. Nothing
+  // is added to the history, so a change of c between steps (the ramp) gives no kick. rigid(x) - x is written
+  // (p0 - q0) + (swing * (x - q0) - (x - q0)), without large cancellations; the previous step's rotation comes
+  // from the host too (skin_delta_before).
   vec3 y = prev[i].xyz;
-  vec3 dx = t + quat_rotate_delta(swing, x.xyz - q0);
-  vec3 dy = t + quat_rotate_delta(swing, y - q0);
-  pos[i] = vec4(x.xyz + c * dx, x.w);
-  prev[i] = vec4(y + c * dy, x.w);
+  vec3 z = prevprev[i].xyz;
+  vec3 now = (p0 - q0) + quat_rotate_delta(swing, y - q0);
+  vec3 before = (q0 - r0) + quat_rotate_delta(skin_delta_before(g), z - r0);
+  pos[i] = vec4(x.xyz + c * (now - gp.velocity_keep * before), x.w);
 }

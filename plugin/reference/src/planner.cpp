@@ -200,6 +200,8 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     st.reset = true;
     last_rot_.clear();
     for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
+    last_delta_.assign(st.skin.size(), Quat{});
+    last_caps_.assign(st.capsules.begin(), st.capsules.begin() + st.capsule_count);
     plan.steps.push_back(st);
     pending_reset_ = false;
     carry_pending_ = false;
@@ -243,14 +245,31 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     // Each transform's rotation since the previous step, in the frame of the (possibly turned) state: VSP's
     // rigid motion. From double-precision poses, so no float rounding of positions is amplified into it.
     const bool have_last = last_rot_.size() == st.skin.size();
+    const bool have_last_delta = last_delta_.size() == st.skin.size();
     for (size_t i = 0; i < st.skin.size(); ++i) {
       const Quat before = have_last ? quat_mul(st.teleport, last_rot_[i]) : st.skin[i].rotation;
       Quat d = normalize(quat_mul(st.skin[i].rotation, conjugate(before)));
       if (d.w < 0) d = {-d.x, -d.y, -d.z, -d.w};
       st.skin[i].delta = d;
+      // The previous step's delta seen in the turned state's frame: Rc D Rc^T.
+      Quat db = have_last_delta ? normalize(quat_mul(quat_mul(st.teleport, last_delta_[i]), conjugate(st.teleport)))
+                                : Quat{};
+      if (db.w < 0) db = {-db.x, -db.y, -db.z, -db.w};
+      st.skin[i].delta_before = db;
     }
     last_rot_.clear();
     for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
+    last_delta_.clear();
+    for (const SkinTransform& t : st.skin) last_delta_.push_back(t.delta);
+    // Each capsule's move since the previous step, the previous ends carried like the state (p' = Rc (p - s));
+    // none when the capsule set changed size.
+    if (last_caps_.size() == st.capsule_count) {
+      for (uint32_t c = 0; c < st.capsule_count; ++c) {
+        st.capsules[c].m0 = st.capsules[c].p0 - quat_rotate(st.teleport, last_caps_[c].p0 - st.origin_shift);
+        st.capsules[c].m1 = st.capsules[c].p1 - quat_rotate(st.teleport, last_caps_[c].p1 - st.origin_shift);
+      }
+    }
+    last_caps_.assign(st.capsules.begin(), st.capsules.begin() + st.capsule_count);
     plan.steps.push_back(st);
   }
   if (n > 0) {
@@ -321,6 +340,8 @@ GpuFrame to_gpu(const FramePlan& plan) {
     for (uint32_t c = 0; c < st.capsule_count; ++c) {
       p.capsule[2 * c] = f4(st.capsules[c].p0, st.capsules[c].r0);
       p.capsule[2 * c + 1] = f4(st.capsules[c].p1, st.capsules[c].r1);
+      p.capsule_move[2 * c] = f4(st.capsules[c].m0, 0.0);
+      p.capsule_move[2 * c + 1] = f4(st.capsules[c].m1, 0.0);
     }
     out.steps.push_back(p);
     for (const SkinTransform& t : st.skin) {
@@ -330,6 +351,7 @@ GpuFrame to_gpu(const FramePlan& plan) {
       }
       out.skin.push_back(f4(t.rotation));
       out.skin.push_back(f4(t.delta));
+      out.skin.push_back(f4(t.delta_before));
     }
   }
   return out;

@@ -126,6 +126,20 @@ Quat Simulator::skin_delta(const Substep& st, uint32_t g) const {
   return st.skin.front().delta;
 }
 
+Quat Simulator::skin_delta_before(const Substep& st, uint32_t g) const {
+  if (st.skin.size() > 1) {
+    Quat q{0, 0, 0, 0};
+    for (size_t k = 0; k < 4; ++k) {
+      const double w = rest_.bone_weight[g][k];
+      if (w == 0.0) continue;
+      const Quat qi = st.skin[rest_.bone_index[g][k]].delta_before;
+      q = {q.x + w * qi.x, q.y + w * qi.y, q.z + w * qi.z, q.w + w * qi.w};
+    }
+    return normalize(q);
+  }
+  return st.skin.front().delta_before;
+}
+
 Quat Simulator::current_root_frame(const Substep& st, uint32_t g) const {
   const size_t b = size_t{g} * rest_.vertices_per_strand;
   Quat f = quat_mul(skin_rotation(st, g), rest_.root_frame[g]);
@@ -145,9 +159,19 @@ void Simulator::integrate(const Substep& st) {
     }
     Vec3 p = pos_[i], q = prev_[i], r = prevprev_[i];
     if (st.move_state) {
-      p = quat_rotate(st.teleport, p - st.origin_shift);
-      q = quat_rotate(st.teleport, q - st.origin_shift);
-      r = quat_rotate(st.teleport, r - st.origin_shift);
+      // With a turn, p carried as a point and the history as turned differences (see integrate.comp).
+      if (static_cast<float>(st.teleport.x) == 0.0f && static_cast<float>(st.teleport.y) == 0.0f &&
+          static_cast<float>(st.teleport.z) == 0.0f) {
+        p = p - st.origin_shift;
+        q = q - st.origin_shift;
+        r = r - st.origin_shift;
+      } else {
+        const Vec3 pq = quat_rotate(st.teleport, p - q);
+        const Vec3 qr = quat_rotate(st.teleport, q - r);
+        p = quat_rotate(st.teleport, p - st.origin_shift);
+        q = p - pq;
+        r = q - qr;
+      }
     }
     Vec3 next;
     if (w > 0.0) {
@@ -175,20 +199,23 @@ void Simulator::vsp(const Substep& st) {
     const size_t b = size_t{g} * n;
     // Every vertex of the strand reads the root state of this step before any vertex is written (the GPU
     // threads never write vertices 0 and 1, so the order does not matter there either).
-    const Vec3 p0 = pos_[b], p1 = pos_[b + 1], q0 = prev_[b], q1 = prev_[b + 1], r1 = prevprev_[b + 1];
+    const Vec3 p0 = pos_[b], p1 = pos_[b + 1], q0 = prev_[b], q1 = prev_[b + 1], r0 = prevprev_[b],
+               r1 = prevprev_[b + 1];
     const double accel = length((p1 - q1) - (q1 - r1));
     const double ramp = std::clamp((accel - 0.75 * gp.vsp_threshold) / (0.25 * gp.vsp_threshold), 0.0, 1.0);
     const double c = gp.vsp_coefficient + ramp * (1.0 - gp.vsp_coefficient);
     // The root's skinning rotation of this step (see vsp.comp).
     const Quat swing = skin_delta(st, g);
-    const Vec3 t = p0 - q0;
+    const Quat swing_before = skin_delta_before(st, g);
+    const Vec3 t = p0 - q0, t_before = q0 - r0;
     for (uint32_t v = 2; v < n; ++v) {
       const size_t i = b + v;
       if (!(rest_.inv_mass[i] > 0.0)) continue;
-      const Vec3 dx = t + quat_rotate_delta(swing, pos_[i] - q0);
-      const Vec3 dy = t + quat_rotate_delta(swing, prev_[i] - q0);
-      pos_[i] = pos_[i] + c * dx;
-      prev_[i] = prev_[i] + c * dy;
+      // See vsp.comp: this step's rigid motion at the vertex's start-of-step position, less the previous step's
+      // rigid motion that integrate already carried (damped) as velocity.
+      const Vec3 now = t + quat_rotate_delta(swing, prev_[i] - q0);
+      const Vec3 before = t_before + quat_rotate_delta(swing_before, prevprev_[i] - r0);
+      pos_[i] = pos_[i] + c * (now - gp.velocity_keep * before);
     }
   }
 }
@@ -263,7 +290,7 @@ void Simulator::length_and_collision(const Substep& st) {
         }
         const double depth = radius - dist;
         x = centre + radius * nrm;
-        const double vn = dot(x - y, nrm);
+        const double vn = dot((x - y) - (cap.m0 + t * (cap.m1 - cap.m0)), nrm);
         if (vn < 0.0) y += std::min(depth / (kContactBand * radius), 1.0) * vn * nrm;
         hit = true;
       }
@@ -284,11 +311,13 @@ void Simulator::length_and_collision(const Substep& st) {
         const double len = length(d);
         const double rest = rest_.rest_length[b + v];
         Vec3 dir = d;
-        if (len < kCollapse * rest) {
-          // Collapsed: restored along its direction blended with the previous step's (see length.comp).
-          const Vec3 was = prev_[b + v + 1] - prev_[b + v];
-          const double wl = length(was);
-          if (wl > kDirectionEps * rest) dir = d + (kCollapse * rest - len) * (was / wl);
+        // Compressed or flipped: restored along its direction blended with the previous step's (see length.comp).
+        const Vec3 was = prev_[b + v + 1] - prev_[b + v];
+        const double wl = length(was);
+        if (wl > kDirectionEps * rest) {
+          const Vec3 u = was / wl;
+          const double blend = std::max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
+          if (blend > 0.0) dir = d + blend * u;
         }
         const double dl = length(dir);
         if (!(dl > 0.0)) continue;
@@ -314,7 +343,17 @@ void Simulator::length_and_collision(const Substep& st) {
     bool ok = true;
     for (uint32_t v = 0; v < n; ++v) ok = ok && is_finite(pos_[b + v]) && is_finite(prev_[b + v]);
     if (!ok) {
-      for (uint32_t v = 0; v < n; ++v) pos_[b + v] = prev_[b + v] = prevprev_[b + v] = skinned_rest(st, b + v);
+      // History: the rest pose carried back by this step's rigid motion (see length.comp).
+      const Vec3 p0 = skinned_rest(st, b);
+      Vec3 q0 = prev_[b];
+      if (!is_finite(q0)) q0 = p0;
+      const Quat back = conjugate(skin_delta(st, g));
+      for (uint32_t v = 0; v < n; ++v) {
+        const Vec3 p = skinned_rest(st, b + v);
+        const Vec3 y = q0 + quat_rotate(back, p - p0);
+        pos_[b + v] = p;
+        prev_[b + v] = prevprev_[b + v] = y;
+      }
       ++nonfinite_resets_;
     }
 

@@ -53,7 +53,8 @@ enum Feature : uint32_t {
 inline constexpr uint32_t kStepReset = 1u;       // StepParams::flags[0] bits
 inline constexpr uint32_t kStepMoveState = 2u;
 inline constexpr uint32_t kMaxCapsules = 8;
-inline constexpr uint32_t kSkinVec4PerBone = 5;  // 3 affine rows, rotation, rotation since the last step
+inline constexpr uint32_t kSkinVec4PerBone = 6;  // 3 affine rows, rotation, rotation since the last step, the
+                                                  // previous step's rotation since the one before
 
 struct GroupParams {
   float velocity_keep;
@@ -82,13 +83,15 @@ struct StepParams {
   std::array<uint32_t, 4> flags;       // [0] kStep* bits, [1] substep index
   std::array<std::array<float, 4>, 4> wind;                  // xyz acceleration*h^2
   std::array<std::array<float, 4>, 2 * kMaxCapsules> capsule;  // [2c] (p0, r0), [2c+1] (p1, r1)
+  std::array<std::array<float, 4>, 2 * kMaxCapsules> capsule_move;  // [2c] p0's move this step, [2c+1] p1's
 };
-static_assert(sizeof(StepParams) == 384);
+static_assert(sizeof(StepParams) == 640);
 static_assert(offsetof(StepParams, origin_shift) == 16);
 static_assert(offsetof(StepParams, teleport) == 32);
 static_assert(offsetof(StepParams, flags) == 48);
 static_assert(offsetof(StepParams, wind) == 64);
 static_assert(offsetof(StepParams, capsule) == 128);
+static_assert(offsetof(StepParams, capsule_move) == 384);
 
 struct PushConstants {
   uint32_t guide_count;

@@ -27,7 +27,7 @@ const std::array<PassInfo, 5> kPasses = {{
      Frequency::kPerSubstep,
      bits({kBindingPositions, kBindingPrevPositions, kBindingPrevPrevPositions, kBindingGuideInfo,
            kBindingGroups}) | kSkinReads,
-     bits({kBindingPositions, kBindingPrevPositions}), kFeatureSkinning, false},
+     bits({kBindingPositions}), kFeatureSkinning, false},
     {PassId::kLocalShape, "local_shape", k_spv_local_shape_comp, sizeof(k_spv_local_shape_comp),
      Granularity::kGuide, Frequency::kPerSubstep,
      bits({kBindingPositions, kBindingRestInfo, kBindingRestEdgeLocal, kBindingRootFrames, kBindingGuideInfo,

@@ -67,9 +67,16 @@ inline Quat quat_from_two_unit(Vec3 a, Vec3 b) {
 // its rest length is blended with the frame's +X by the missing length (see frame_align in common.glsl; the
 // constants are kCollapse and kDirectionEps there and in model.hpp).
 inline constexpr double kCollapseAlign = 1.0;  // = kCollapse in model.hpp
+// Fold guard (GLSL twin in common.glsl): the amount of unit vector u added to e (length el) so that e never points
+// against u; zero within 90 degrees, 2 el cos^2 beyond. Keeps minimal rotations away from half turns.
+inline double fold_guard(Vec3 e, double el, Vec3 u) {
+  const double eu = dot(e, u);
+  return (eu < 0.0 && el > 0.0) ? 2.0 * (eu * eu / el) : 0.0;
+}
 inline Quat frame_align(Quat q, Vec3 e, double rest_len) {
   const Vec3 x = quat_rotate(q, Vec3{1, 0, 0});
-  const Vec3 d = e + std::max(kCollapseAlign * rest_len - length(e), 0.0) * x;
+  const double el = length(e);
+  const Vec3 d = e + (std::max(kCollapseAlign * rest_len - el, 0.0) + fold_guard(e, el, x)) * x;
   const double len = length(d);
   if (!(len > 1e-4 * rest_len)) return q;
   return normalize(quat_mul(quat_from_two_unit(x, d / len), q));

@@ -34,7 +34,7 @@ inline constexpr double kCollapse = 1.0;
 // Strands shorter than this fraction of the groom's median strand length are carried rigidly (all pinned): short
 // hair barely bends under its own weight (the gravito-bending length of a human hair is about 4.5 cm), and such a
 // strand resolved into N vertices has sub-millimetre segments whose dynamics mostly amplify rounding.
-inline constexpr double kRigidStrandRel = 0.3;
+inline constexpr double kRigidStrandRel = 0.45;
 // GLSL twin: kDirectionEps in common.glsl.
 inline constexpr double kDirectionEps = 1e-4;
 

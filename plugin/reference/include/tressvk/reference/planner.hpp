@@ -31,6 +31,9 @@ struct SkinTransform {
   std::array<std::array<double, 4>, 3> rows{};
   Quat rotation;
   Quat delta;  // rotation since the previous step (identity at a reset): the rigid motion VSP propagates
+  // The previous step's delta, in the frame of this step's state (turned with a teleport or carry; identity after
+  // a reset): VSP removes the rigid motion integration already carried as velocity.
+  Quat delta_before;
   Vec3 apply(Vec3 x) const {
     return {rows[0][0] * x.x + rows[0][1] * x.y + rows[0][2] * x.z + rows[0][3],
             rows[1][0] * x.x + rows[1][1] * x.y + rows[1][2] * x.z + rows[1][3],
@@ -41,6 +44,8 @@ struct SkinTransform {
 struct CapsuleSim {
   Vec3 p0, p1;
   double r0 = 0, r1 = 0;
+  Vec3 m0, m1;  // moves of p0 and p1 since the previous step, in this step's frame (zero after a reset): the
+                // collider's velocity, so contacts remove only velocity relative to the surface
 };
 
 struct Substep {
@@ -102,6 +107,8 @@ class FramePlanner {
   Pose last_;                // instance pose at the last simulated step
   std::vector<Pose> last_bones_;
   std::vector<Quat> last_rot_;  // skin rotations of the last planned step
+  std::vector<Quat> last_delta_;  // skin deltas of the last planned step
+  std::vector<CapsuleSim> last_caps_;  // capsules of the last planned step (its frame)
 };
 
 // Per-group parameters converted to per-step values for step length h (what both sides use).

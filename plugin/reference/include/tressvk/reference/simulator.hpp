@@ -64,6 +64,7 @@ class Simulator {
   void prepare_groups(double h);
   Quat skin_rotation(const Substep& step, uint32_t g) const;
   Quat skin_delta(const Substep& step, uint32_t g) const;
+  Quat skin_delta_before(const Substep& step, uint32_t g) const;
   Quat current_root_frame(const Substep& step, uint32_t g) const;
 
   ModelRest rest_;
