@@ -1,0 +1,181 @@
+// Conditioning probe: how much one frame of the double-precision model amplifies float32-sized input noise.
+// Two reference simulators advance the same scene; before each frame both load the first one's state rounded to
+// float (as the GPU holds it), the second with every coordinate moved by one float ulp in a random direction. The
+// largest vertex distance after the frame, over the median strand length, is a CPU proxy for the GPU step error.
+// Diagnostic only: usage conditioning_probe (FILE.tfx [FILE.tfxbone] | straight|curly|long128) [frames] [scenes...]
+// Environment: PROBE_PASSES=1 replays the worst frame pass by pass (PROBE_GUIDE=g: show guide g's segments);
+// PROBE_DETAIL=1 shows the worst strand; PROBE_NOCAPS=1 drops capsules; PROBE_VSP, PROBE_LOCAL, PROBE_GLOBAL,
+// PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED override parameters.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <tressvk/baker/bake.hpp>
+#include <tressvk/baker/import.hpp>
+
+#include "helpers.hpp"
+
+using namespace tvk_test;
+
+namespace {
+// Parameter overrides for experiments: PROBE_VSP, PROBE_LOCAL (stiffness), PROBE_GLOBAL (stiffness).
+TvkSimParams probe_params() {
+  TvkSimParams p = default_params();
+  if (const char* e = std::getenv("PROBE_VSP")) p.vsp_coefficient = std::strtof(e, nullptr);
+  if (const char* e = std::getenv("PROBE_LOCAL")) p.local_stiffness = std::strtof(e, nullptr);
+  if (const char* e = std::getenv("PROBE_GLOBAL")) p.global_stiffness = std::strtof(e, nullptr);
+  if (const char* e = std::getenv("PROBE_VSP_THRESHOLD")) p.vsp_threshold = std::strtof(e, nullptr);
+  if (const char* e = std::getenv("PROBE_MAX_SPEED")) p.max_speed = std::strtof(e, nullptr);
+  return p;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s (FILE.tfx [FILE.tfxbone] | builtin) [frames] [scenes...]\n", argv[0]);
+    return 2;
+  }
+  std::string src = argv[1];
+  int arg = 2;
+  tressvk::asset::HairAsset hair;
+  if (src.size() > 4 && src.substr(src.size() - 4) == ".tfx") {
+    tressvk::baker::RawGroom raw = tressvk::baker::import_tfx(src);
+    if (argc > 2 && std::string(argv[2]).find(".tfxbone") != std::string::npos) {
+      tressvk::baker::apply_tfxbone(raw, argv[2]);
+      arg = 3;
+    }
+    tressvk::baker::BakeOptions options;
+    options.follow_per_guide = 2;
+    hair = tressvk::baker::bake(raw, options);
+  } else {
+    hair = groom(src, src == "long128" ? 16 : 32, src == "straight" ? 1 : 0);
+  }
+  const uint32_t frames = argc > arg ? static_cast<uint32_t>(std::atoi(argv[arg])) : 40;
+  std::vector<std::string> scenes;
+  for (int i = arg + 1; i < argc; ++i) scenes.emplace_back(argv[i]);
+  if (scenes.empty()) scenes = scene_names();
+  for (const std::string& scene : scenes) {
+    Simulator a = make_sim(hair, probe_params()), b = make_sim(hair, probe_params());
+    const SceneGeometry geo = scene_geometry(a.rest());
+    const double median = a.median_strand_length();
+    std::mt19937 rng(7);
+    double worst = 0;
+    uint32_t worst_frame = 0;
+    size_t worst_vertex = 0;
+    for (uint32_t f = 0; f < frames; ++f) {
+      TvkSimFrame frame = scene_frame(scene, f, geo);
+      if (std::getenv("PROBE_NOCAPS") != nullptr) frame.capsule_count = 0;
+      if (f > 0) {
+        auto pack = [&](std::span<const Vec3> s, bool jitter) {
+          std::vector<tressvk::sim::Vec4> out(s.size());
+          for (size_t i = 0; i < s.size(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+              float x = static_cast<float>(s[i][c]);
+              if (jitter) x = std::nextafter(x, (rng() & 1u) ? INFINITY : -INFINITY);
+              out[i][static_cast<size_t>(c)] = x;
+            }
+          }
+          return out;
+        };
+        const auto p = pack(a.positions(), false), q = pack(a.prev_positions(), false), r = pack(a.prevprev_positions(), false);
+        const auto pj = pack(a.positions(), true), qj = pack(a.prev_positions(), true), rj = pack(a.prevprev_positions(), true);
+        a.set_state(p, q, r);
+        b.set_state(pj, qj, rj);
+      }
+      a.advance(frame);
+      b.advance(frame);
+      const auto pa = a.positions(), pb = b.positions();
+      for (size_t i = 0; i < pa.size(); ++i) {
+        const double d = length(pa[i] - pb[i]) / median;
+        if (d > worst) {
+          worst = d;
+          worst_frame = f;
+          worst_vertex = i;
+        }
+      }
+    }
+    if (std::getenv("PROBE_PASSES") != nullptr) {
+      // Replay to the worst frame twice (clean, and with the same 1-ulp jitter), then step the passes one by one
+      // and print the largest response after each: where the model amplifies.
+      Simulator c = make_sim(hair, probe_params());
+      for (uint32_t f = 0; f < worst_frame; ++f) c.advance(scene_frame(scene, f, geo));
+      std::mt19937 rng2(11);
+      auto pack2 = [&](std::span<const Vec3> s2, bool jitter) {
+        std::vector<tressvk::sim::Vec4> out(s2.size());
+        for (size_t i = 0; i < s2.size(); ++i) {
+          for (int k = 0; k < 3; ++k) {
+            float x = static_cast<float>(s2[i][k]);
+            if (jitter) x = std::nextafter(x, (rng2() & 1u) ? INFINITY : -INFINITY);
+            out[i][static_cast<size_t>(k)] = x;
+          }
+        }
+        return out;
+      };
+      Simulator d = c;
+      d.set_state(pack2(c.positions(), true), pack2(c.prev_positions(), true), pack2(c.prevprev_positions(), true));
+      c.set_state(pack2(c.positions(), false), pack2(c.prev_positions(), false), pack2(c.prevprev_positions(), false));
+      Simulator e = c;
+      const FramePlan plan = e.advance(scene_frame(scene, worst_frame, geo));
+      auto report = [&](const char* what, size_t k) {
+        double m = 0, mv = 0;
+        size_t am = 0;
+        for (size_t i = 0; i < c.prev_positions().size(); ++i) {
+          const double di = length(c.positions()[i] - d.positions()[i]) / median;
+          if (di > m) am = i;
+          m = std::max(m, di);
+          mv = std::max(mv, length((c.positions()[i] - c.prev_positions()[i]) - (d.positions()[i] - d.prev_positions()[i])) / median);
+        }
+        std::printf("  step %zu %-12s pos %.3g vel %.3g (vertex %zu)\n", k, what, m, mv, am);
+      };
+      for (size_t k = 0; k < plan.steps.size(); ++k) {
+        const Substep& stp = plan.steps[k];
+        c.integrate(stp); d.integrate(stp); report("integrate", k);
+        c.vsp(stp); d.vsp(stp); report("vsp", k);
+        c.local_shape(stp); d.local_shape(stp); report("local_shape", k);
+        if (k + 1 == plan.steps.size()) {
+          const uint32_t nn = c.rest().vertices_per_strand;
+          // The worst vertex's guide, or the one named by PROBE_GUIDE: its segments before the length pass.
+          const size_t gg = (worst_vertex / nn) % c.rest().guide_count;
+          const size_t g2 = std::getenv("PROBE_GUIDE") ? static_cast<size_t>(std::atoi(std::getenv("PROBE_GUIDE"))) : gg;
+          for (uint32_t v = 0; v + 1 < nn; ++v) {
+            const size_t i = g2 * nn + v;
+            const Vec3 dd = c.positions()[i + 1] - c.positions()[i];
+            const Vec3 was = c.prev_positions()[i + 1] - c.prev_positions()[i];
+            std::string caps;
+            for (uint32_t cc = 0; cc < stp.capsule_count; ++cc) {
+              const CapsuleSim& cap = stp.capsules[cc];
+              const Vec3 axis = cap.p1 - cap.p0;
+              const double aa = dot(axis, axis);
+              const double t = aa > 0.0 ? std::clamp(dot(c.positions()[i] - cap.p0, axis) / aa, 0.0, 1.0) : 0.0;
+              const double rr = cap.r0 + t * (cap.r1 - cap.r0);
+              caps += " " + std::to_string(length(c.positions()[i] - (cap.p0 + t * axis)) / rr);
+            }
+            std::printf("    v%2u rest %.3g len %.3g caps%s cos(was) %.3f diff %.3g\n", v, c.rest().rest_length[i], length(dd), caps.c_str(),
+                        dot(dd, was) / (length(dd) * length(was) + 1e-30), length(c.positions()[i + 1] - d.positions()[i + 1]) / median);
+          }
+        }
+        c.length_and_collision(stp); d.length_and_collision(stp); report("length", k);
+      }
+    }
+    const auto st = stretch(a.positions(), a.rest());
+    if (std::getenv("PROBE_DETAIL") != nullptr) {
+      // Replay to the worst frame and show that strand: rest and current segment lengths around the vertex.
+      Simulator c = make_sim(hair, probe_params());
+      for (uint32_t f = 0; f <= worst_frame; ++f) c.advance(scene_frame(scene, f, geo));
+      const uint32_t n = c.rest().vertices_per_strand;
+      const size_t g = (worst_vertex / n) % c.rest().guide_count, sb = g * n;
+      std::printf("  guide %zu v %zu: strand %.4g m (median %.4g)\n", g, worst_vertex % n, c.rest().strand_length[g], median);
+      for (uint32_t v = 0; v + 1 < n; ++v) {
+        std::printf("   %2u rest %.3g len %.3g w %.0f\n", v, c.rest().rest_length[sb + v],
+                    length(c.positions()[sb + v + 1] - c.positions()[sb + v]), c.rest().inv_mass[sb + v]);
+      }
+    }
+    std::printf("%-9s response %.3g (frame %u, vertex %zu), stretch max %.4f, rigid strands %u of %u\n", scene.c_str(),
+                worst, worst_frame, worst_vertex, st.max, a.rest().rigid_strands, a.rest().guide_count);
+  }
+  return 0;
+}
