@@ -174,7 +174,8 @@ TVK_API void tressvk_destroy_instance(TvkInstance instance);
 #define TVK_ALL_GROUPS 0xFFFFFFFFu
 TVK_API TvkResult tressvk_set_sim_params(TvkInstance instance, uint32_t group, const TvkSimParams* params);
 TVK_API TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* settings);
-/* This frame's motion, wind and colliders. Call before tressvk_cmd_simulate; the frame is copied. */
+/* This frame's motion, wind and colliders. Call before tressvk_cmd_simulate; the frame is copied. An instance
+ * whose frame was not set since its last simulation keeps its pose and advances no time (dt 0). */
 TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame);
 
 typedef struct TvkInstanceBuffers {
