@@ -103,36 +103,27 @@ vec4 skin_rotation(uint g) {
   return skin[pc.skin_base + 3u];
 }
 
-// The strand's skinning rotation since the previous step (bone deltas blended; they are near identity with
-// w >= 0, so no hemisphere flip is needed).
-vec4 skin_delta(uint g) {
+// Blends a per-bone rotation held at vec4 `slot` of each bone's skinning data with the strand's bone weights. The
+// bone deltas it is used for are near identity with w >= 0, so no hemisphere flip is needed.
+vec4 blend_bone_delta(uint g, uint slot) {
   if (TVK_HAS(TVK_FEATURE_SKINNING)) {
     uvec4 bi = bone_index[g];
     vec4 bw = bone_weight[g];
     vec4 q = vec4(0);
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
-      q += bw[i] * skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + 4u];
+      q += bw[i] * skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + slot];
     }
     return normalize(q);
   }
-  return skin[pc.skin_base + 4u];
+  return skin[pc.skin_base + slot];
 }
 
+// The strand's skinning rotation since the previous step.
+vec4 skin_delta(uint g) { return blend_bone_delta(g, 4u); }
+
 // The same blend of the previous step's rotation since the one before (what integration carried as velocity).
-vec4 skin_delta_before(uint g) {
-  if (TVK_HAS(TVK_FEATURE_SKINNING)) {
-    uvec4 bi = bone_index[g];
-    vec4 bw = bone_weight[g];
-    vec4 q = vec4(0);
-    for (uint i = 0u; i < 4u; ++i) {
-      if (bw[i] == 0.0) continue;
-      q += bw[i] * skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + 5u];
-    }
-    return normalize(q);
-  }
-  return skin[pc.skin_base + 5u];
-}
+vec4 skin_delta_before(uint g) { return blend_bone_delta(g, 5u); }
 
 // The guide's root frame now: the skinned rest root frame, turned onto the current root edge when that edge is
 // long enough (the same frame local shape starts from and follow hairs are turned by).

@@ -112,32 +112,30 @@ Quat Simulator::skin_rotation(const Substep& st, uint32_t g) const {
   return st.skin.front().rotation;
 }
 
-Quat Simulator::skin_delta(const Substep& st, uint32_t g) const {
+namespace {
+// Blends one per-bone rotation (`member` of each bone's SkinTransform) with the strand's bone weights; the GLSL
+// twin is blend_bone_delta in common.glsl.
+Quat blend_bone_delta(const Substep& st, const ModelRest& rest, uint32_t g, Quat SkinTransform::*member) {
   if (st.skin.size() > 1) {
     Quat q{0, 0, 0, 0};
     for (size_t k = 0; k < 4; ++k) {
-      const double w = rest_.bone_weight[g][k];
+      const double w = rest.bone_weight[g][k];
       if (w == 0.0) continue;
-      const Quat qi = st.skin[rest_.bone_index[g][k]].delta;
+      const Quat qi = st.skin[rest.bone_index[g][k]].*member;
       q = {q.x + w * qi.x, q.y + w * qi.y, q.z + w * qi.z, q.w + w * qi.w};
     }
     return normalize(q);
   }
-  return st.skin.front().delta;
+  return st.skin.front().*member;
+}
+}  // namespace
+
+Quat Simulator::skin_delta(const Substep& st, uint32_t g) const {
+  return blend_bone_delta(st, rest_, g, &SkinTransform::delta);
 }
 
 Quat Simulator::skin_delta_before(const Substep& st, uint32_t g) const {
-  if (st.skin.size() > 1) {
-    Quat q{0, 0, 0, 0};
-    for (size_t k = 0; k < 4; ++k) {
-      const double w = rest_.bone_weight[g][k];
-      if (w == 0.0) continue;
-      const Quat qi = st.skin[rest_.bone_index[g][k]].delta_before;
-      q = {q.x + w * qi.x, q.y + w * qi.y, q.z + w * qi.z, q.w + w * qi.w};
-    }
-    return normalize(q);
-  }
-  return st.skin.front().delta_before;
+  return blend_bone_delta(st, rest_, g, &SkinTransform::delta_before);
 }
 
 Quat Simulator::current_root_frame(const Substep& st, uint32_t g) const {
