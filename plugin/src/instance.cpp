@@ -16,7 +16,8 @@ VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a *
 
 void destroy_instance_now(TvkInstance_T* inst, bool deferred) {
   Context& ctx = *inst->ctx;
-  for (GpuBuffer* b : {&inst->positions, &inst->prev, &inst->prevprev, &inst->tangents, &inst->counters, &inst->ring})
+  for (GpuBuffer* b : {&inst->positions, &inst->prev, &inst->prevprev, &inst->tangents, &inst->counters,
+                       &inst->anchors, &inst->ring})
     deferred ? destroy_buffer_deferred(ctx, *b) : destroy_buffer(ctx, *b);
   // The descriptor pool holds no GPU memory the device could still read after the buffers are gone; a pool
   // destroyed while a command buffer using its set is pending is invalid, so it follows the same deferral by
@@ -43,6 +44,8 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
       (r = create_buffer(ctx, guide_vertices * 16, state_usage, Memory::device, "positions two steps back",
                          inst.prevprev)) ||
       (r = create_buffer(ctx, all_vertices * 16, state_usage, Memory::device, "tangents", inst.tangents)) ||
+      (r = create_buffer(ctx, VkDeviceSize{rest.guide_count} * 16, state_usage, Memory::device, "strand anchors",
+                         inst.anchors)) ||
       (r = create_buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::host_readback, "counters",
                          inst.counters)))
     return r;
@@ -89,6 +92,7 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
   infos[tressvk::sim::kBindingGroups] = {inst.ring.buffer, inst.groups_offset, inst.steps_offset};
   infos[tressvk::sim::kBindingSteps] = {inst.ring.buffer, inst.steps_offset, inst.skin_offset - inst.steps_offset};
   infos[tressvk::sim::kBindingCounters] = {inst.counters.buffer, 0, VK_WHOLE_SIZE};
+  infos[tressvk::sim::kBindingAnchors] = {inst.anchors.buffer, 0, VK_WHOLE_SIZE};
   std::array<VkWriteDescriptorSet, tressvk::sim::kBindingCount> writes{};
   for (uint32_t b = 0; b < tressvk::sim::kBindingCount; ++b) {
     writes[b] = {};
@@ -213,6 +217,11 @@ TvkResult tressvk_get_instance_buffers(TvkInstance instance, TvkInstanceBuffers*
   out->positions_size = instance->positions.size;
   out->tangents_size = instance->tangents.size;
   out->previous_positions_size = instance->prev.size;
+  out->anchors = instance->anchors.buffer;
+  out->anchors_size = instance->anchors.size;
+  out->guide_count = instance->asset->rest.guide_count;
+  out->vertices_per_strand = instance->asset->rest.vertices_per_strand;
+  out->follow_per_guide = instance->asset->rest.follow_per_guide;
   for (size_t i = 0; i < 3; ++i) out->origin[i] = instance->sim_origin[i];
   return TVK_SUCCESS;
 }

@@ -39,8 +39,8 @@ struct TvkInstance_T {
   bool frame_set = false;
   std::unique_ptr<tressvk::reference::FramePlanner> planner;
 
-  // Dynamic state, bindings 0..3, and the counters (binding 15, host-visible).
-  tressvk::GpuBuffer positions, prev, prevprev, tangents, counters;
+  // Dynamic state, bindings 0..3, the counters (binding 15, host-visible) and the guides' anchors (binding 16).
+  tressvk::GpuBuffer positions, prev, prevprev, tangents, counters, anchors;
   // Per-frame parameters, bindings 12 (skin), 13 (groups), 14 (steps): one slice per frame in flight, bound with
   // dynamic offsets.
   tressvk::GpuBuffer ring;

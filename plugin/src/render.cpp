@@ -12,19 +12,19 @@ namespace tressvk::render {
 namespace {
 
 TvkResult make_set_layout(Context& ctx, bool shadowed, VkDescriptorSetLayout& out) {
-  std::array<VkDescriptorSetLayoutBinding, 5> b{};
-  for (uint32_t i = 0; i < 5; ++i) {
+  std::array<VkDescriptorSetLayoutBinding, 6> b{};
+  for (uint32_t i = 0; i < 6; ++i) {
     b[i].binding = i;
     b[i].descriptorCount = 1;
     b[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     b[i].stageFlags = i == 0 ? VkShaderStageFlags{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}
                            : VkShaderStageFlags{VK_SHADER_STAGE_VERTEX_BIT};
   }
-  b[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  b[4].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+  b[5].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  b[5].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
   VkDescriptorSetLayoutCreateInfo ci{};
   ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  ci.bindingCount = shadowed ? 5u : 4u;
+  ci.bindingCount = shadowed ? 6u : 5u;
   ci.pBindings = b.data();
   return ctx.check(ctx.vk.vkCreateDescriptorSetLayout(ctx.info.device, &ci, ctx.info.allocator, &out),
                    "vkCreateDescriptorSetLayout (hair)");
@@ -210,7 +210,7 @@ TvkResult tressvk_create_renderer(TvkContext context, const TvkRendererCreateInf
   for (uint32_t i = 0; res == TVK_SUCCESS && i < ctx.frames_in_flight; ++i) {
     const std::array<VkDescriptorPoolSize, 3> sizes{
         VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, r->max_draws},
-        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * r->max_draws},
+        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * r->max_draws},
         VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r->max_draws}};
     VkDescriptorPoolCreateInfo pci{};
     pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;

@@ -164,30 +164,31 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info,
                                 "vkAllocateDescriptorSets (hair)");
       res != TVK_SUCCESS)
     return res;
-  const std::array<VkDescriptorBufferInfo, 4> buffers{
+  const std::array<VkDescriptorBufferInfo, 5> buffers{
       VkDescriptorBufferInfo{r.ring.buffer, offset, sizeof(DrawConstants)},
       VkDescriptorBufferInfo{inst.positions.buffer, 0, VK_WHOLE_SIZE},
       VkDescriptorBufferInfo{inst.tangents.buffer, 0, VK_WHOLE_SIZE},
       VkDescriptorBufferInfo{asset.statics[sim::kBindingGuideInfo - sim::kBindingRestPositions].buffer, 0,
-                             VK_WHOLE_SIZE}};
-  std::array<VkWriteDescriptorSet, 5> writes{};
-  for (uint32_t i = 0; i < 5; ++i) {
+                             VK_WHOLE_SIZE},
+      VkDescriptorBufferInfo{inst.anchors.buffer, 0, VK_WHOLE_SIZE}};
+  std::array<VkWriteDescriptorSet, 6> writes{};
+  for (uint32_t i = 0; i < 6; ++i) {
     writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     writes[i].dstSet = set;
     writes[i].dstBinding = i;
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    if (i < 4) writes[i].pBufferInfo = &buffers[i];
+    if (i < 5) writes[i].pBufferInfo = &buffers[i];
   }
   VkDescriptorImageInfo image{};
   if (shadowed) {
     image.sampler = info->shadow->sampler;
     image.imageView = info->shadow->depth_view;
     image.imageLayout = info->shadow->layout;
-    writes[4].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    writes[4].pImageInfo = &image;
+    writes[5].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    writes[5].pImageInfo = &image;
   }
-  ctx.vk.vkUpdateDescriptorSets(ctx.info.device, shadowed ? 5u : 4u, writes.data(), 0, nullptr);
+  ctx.vk.vkUpdateDescriptorSets(ctx.info.device, shadowed ? 6u : 5u, writes.data(), 0, nullptr);
 
   // Draws: the opaque core first (depth written), then the blended fringe over it.
   const uint32_t vertex_count = drawn * (n - 1) * 6;

@@ -107,6 +107,7 @@ VkBuffer writable_buffer(const TvkInstance_T& inst, uint32_t binding) {
     case sim::kBindingPrevPrevPositions: return inst.prevprev.buffer;
     case sim::kBindingTangents: return inst.tangents.buffer;
     case sim::kBindingCounters: return inst.counters.buffer;
+    case sim::kBindingAnchors: return inst.anchors.buffer;
     default: return VK_NULL_HANDLE;
   }
 }
@@ -228,7 +229,7 @@ TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer cmd, const Tv
                                               VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
   for (InstanceWork& w : work) {
     for (uint32_t b : {sim::kBindingPositions, sim::kBindingPrevPositions, sim::kBindingPrevPrevPositions,
-                       sim::kBindingTangents, sim::kBindingCounters})
+                       sim::kBindingTangents, sim::kBindingCounters, sim::kBindingAnchors})
       barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), earlier_users, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT));
@@ -318,10 +319,10 @@ TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer cmd, const Tv
     if (p.frequency == sim::Frequency::kPerFrame)
       if (TvkResult r = record_slot(p.id, 0, true); r != TVK_SUCCESS) return r;
 
-  // Exit: positions and tangents visible to the host's vertex shaders (and compute); counters to the host.
+  // Exit: positions, tangents and anchors visible to the host's vertex shaders (and compute); counters to the host.
   barriers.clear();
   for (InstanceWork& w : work) {
-    for (uint32_t b : {sim::kBindingPositions, sim::kBindingTangents})
+    for (uint32_t b : {sim::kBindingPositions, sim::kBindingTangents, sim::kBindingAnchors})
       barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                         VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -36,7 +36,7 @@ Expanded expand_vertex(uint vertex_id) {
   const uint index = strand * n + v;
 
   Expanded e;
-  e.position = positions[index].xyz;
+  e.position = anchors[strand % dc.counts.y].xyz + positions[index].xyz;
   e.tangent = tangents[index].xyz;
   e.along = float(v) / float(n - 1u);
   e.group = min(guide_info[strand % dc.counts.y].x, 15u);

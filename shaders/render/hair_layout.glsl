@@ -31,6 +31,7 @@ layout(std140, set = 0, binding = 0) uniform DrawConstants {
   Material materials[16];
 } dc;
 
-layout(std430, set = 0, binding = 1) readonly buffer Positions { vec4 positions[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Positions { vec4 positions[]; };  // offsets from the anchors
 layout(std430, set = 0, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
 layout(std430, set = 0, binding = 3) readonly buffer GuideInfo { uvec4 guide_info[]; };  // x: strand group
+layout(std430, set = 0, binding = 4) readonly buffer Anchors { vec4 anchors[]; };  // per guide, simulation space

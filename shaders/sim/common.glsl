@@ -66,25 +66,35 @@ float strand_rest_length(uint g) { return uintBitsToFloat(guide_info[g].z); }
 
 GroupParams guide_params(uint g) { return group[pc.group_base + guide_info[g].x]; }
 
-// Skinned rest position of a guide vertex in simulation space at the current substep.
-vec3 skin_point(uint g, vec3 x) {
+// The strand's blend of the affine rows at vec4 `slot` of each bone's skinning data, applied to x (w = 1: a point,
+// w = 0: a vector). Slot 0: asset space -> simulation space; slot 6: that map's change since the previous step.
+vec3 skin_apply(uint g, uint slot, vec3 x, float w) {
   if (TVK_HAS(TVK_FEATURE_SKINNING)) {
     uvec4 bi = bone_index[g];
     vec4 bw = bone_weight[g];
     vec4 r0 = vec4(0), r1 = vec4(0), r2 = vec4(0);
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
-      uint o = pc.skin_base + TVK_SKIN_VEC4 * bi[i];
+      uint o = pc.skin_base + TVK_SKIN_VEC4 * bi[i] + slot;
       r0 += bw[i] * skin[o];
       r1 += bw[i] * skin[o + 1u];
       r2 += bw[i] * skin[o + 2u];
     }
-    return vec3(dot(r0.xyz, x) + r0.w, dot(r1.xyz, x) + r1.w, dot(r2.xyz, x) + r2.w);
+    return vec3(dot(r0.xyz, x) + w * r0.w, dot(r1.xyz, x) + w * r1.w, dot(r2.xyz, x) + w * r2.w);
   }
-  uint o = pc.skin_base;
-  return vec3(dot(skin[o].xyz, x) + skin[o].w, dot(skin[o + 1u].xyz, x) + skin[o + 1u].w,
-              dot(skin[o + 2u].xyz, x) + skin[o + 2u].w);
+  uint o = pc.skin_base + slot;
+  return vec3(dot(skin[o].xyz, x) + w * skin[o].w, dot(skin[o + 1u].xyz, x) + w * skin[o + 1u].w,
+              dot(skin[o + 2u].xyz, x) + w * skin[o + 2u].w);
 }
+
+// The guide's anchor at the current substep: its skinned rest root, in simulation space.
+vec3 skin_anchor(uint g) { return skin_apply(g, 0u, rest_pos[g * N].xyz, 1.0); }
+
+// How far the guide's anchor moved since the previous substep (in this substep's frame).
+vec3 anchor_move(uint g) { return skin_apply(g, 6u, rest_pos[g * N].xyz, 1.0); }
+
+// Skinned rest position of guide vertex v, relative to the guide's anchor (the root: exactly zero).
+vec3 skin_offset(uint g, uint v) { return v == 0u ? vec3(0.0) : skin_apply(g, 0u, rest_pos[g * N + v].xyz, 0.0); }
 
 // Rotation of the strand's skinning (weights blended on the quaternion hemisphere of the first bone).
 vec4 skin_rotation(uint g) {

@@ -1,6 +1,7 @@
-// Pass 1, one thread per guide vertex: move the state with the simulation origin (and a teleport), rotate the
-// history, Verlet-integrate with exponential damping and gravity, pin immovable vertices to the skinned rest
-// pose, and pull toward the skinned rest pose over the global range (global shape constraints).
+// Pass 1, one thread per guide vertex: write the guide's anchor (its skinned rest root), re-express the state
+// against it (turned first by a teleport), Verlet-integrate with exponential damping and gravity, pin immovable
+// vertices to the skinned rest pose, and pull toward the skinned rest pose over the global range (global shape
+// constraints). Everything here is relative to the guide's anchor.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "sim/common.glsl"
@@ -12,12 +13,14 @@ void main() {
   uint g = i / N;
   uint v = i - g * N;
 
-  vec4 rest = rest_pos[i];
-  vec3 goal = skin_point(g, rest.xyz);
+  float inv_mass = rest_pos[i].w;
+  vec3 goal = skin_offset(g, v);
   uint flags = step_params[pc.step_index].flags.x;
+  // Only this dispatch writes anchors and no pass before the length pass reads them.
+  if (v == 0u) anchor[g] = vec4(skin_anchor(g), 0.0);
 
   if ((flags & TVK_STEP_RESET) != 0u) {
-    vec4 p = vec4(goal, rest.w);
+    vec4 p = vec4(goal, inv_mass);
     pos[i] = p;
     prev[i] = p;
     prevprev[i] = p;
@@ -28,27 +31,27 @@ void main() {
   vec3 q = prev[i].xyz;
   vec3 r = prevprev[i].xyz;
   if ((flags & TVK_STEP_MOVE_STATE) != 0u) {
-    // The origin moved (instance translation) and/or the instance teleported (a rotation about the new
-    // origin): both are rigid, applied to the whole history, so they add no velocity.
-    vec3 shift = step_params[pc.step_index].origin_shift.xyz;
+    // A teleport turns the whole history rigidly about the old anchor (the origin's own shift is part of the anchor's
+    // move). Only p is turned as a point; the history follows as turned differences, so the turn's rounding is common
+    // to all three and adds no velocity.
     vec4 turn = step_params[pc.step_index].teleport;
-    // The shift alone is exact (a multiple of 1/1024 m). With a turn, only p is carried as a point and the history
-    // follows as turned differences, so the turn's rounding is common to all three and adds no velocity.
-    if (all(equal(turn.xyz, vec3(0.0)))) {
-      p -= shift;
-      q -= shift;
-      r -= shift;
-    } else {
+    if (any(notEqual(turn.xyz, vec3(0.0)))) {
       vec3 pq = quat_rotate(turn, p - q);
       vec3 qr = quat_rotate(turn, q - r);
-      p = quat_rotate(turn, p - shift);
+      p = quat_rotate(turn, p);
       q = p - pq;
       r = q - qr;
     }
   }
+  // Re-expressed against this step's anchor: the same move for the whole history and the whole strand, so it is
+  // rigid and adds no velocity (its rounding is relative to the move, not to the anchor's distance from the origin).
+  vec3 move = anchor_move(g);
+  p -= move;
+  q -= move;
+  r -= move;
 
   vec3 next;
-  if (rest.w > 0.0) {
+  if (inv_mass > 0.0) {
     GroupParams gp = guide_params(g);
     next = p + gp.velocity_keep * (p - q) + step_params[pc.step_index].gravity.xyz;
     if (TVK_HAS(TVK_FEATURE_GLOBAL_SHAPE)) {
@@ -57,7 +60,7 @@ void main() {
   } else {
     next = goal;
   }
-  prevprev[i] = vec4(q, rest.w);
-  prev[i] = vec4(p, rest.w);
-  pos[i] = vec4(next, rest.w);
+  prevprev[i] = vec4(q, inv_mass);
+  prev[i] = vec4(p, inv_mass);
+  pos[i] = vec4(next, inv_mass);
 }

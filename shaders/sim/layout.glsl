@@ -6,9 +6,15 @@
 // N vertices per strand. Vertex v of guide g is at g*N+v; follow f of guide g is rendered strand (f+1)*G+g, so
 // its vertex v is at ((f+1)*G+g)*N+v (the asset's strand order: guides first, then follow layers).
 //
-// Positions are in the instance's simulation space: world-oriented axes (gravity and wind are world vectors),
-// origin at the instance translation plus the rotated asset origin, which the host keeps in double precision.
-// float32 only ever holds groom-sized numbers, wherever the character is.
+// Simulation space: world-oriented axes (gravity and wind are world vectors), origin at the instance translation
+// plus the rotated asset origin, which the host keeps in double precision. Within it every guide has an anchor, its
+// skinned rest root at the current step (anchor[g], written by integrate), and the state (pos, prev, prevprev) holds
+// offsets from the anchor of its guide (a follow uses its guide's anchor): a vertex is at anchor[g] + pos[i]. So
+// float32 holds strand-sized numbers only, wherever the strand is on the character and wherever the character is:
+// rounding is relative to the strand, not to the head (a 1 mm segment 0.4 m from the asset origin would otherwise
+// carry 3e-8 m of rounding per coordinate, a 2e-5 rad direction error, which the strand's lever arm multiplies).
+// Each step the state is re-expressed against the new anchor by the anchor's move, which the host computes in
+// double (skin rows [6..8]), so the move adds no rounding that differs along the strand.
 #ifndef TRESSVK_SIM_LAYOUT_GLSL
 #define TRESSVK_SIM_LAYOUT_GLSL
 
@@ -34,7 +40,8 @@ layout(std430, set = 0, binding = 2) buffer PrevPrevPositions { vec4 prevprev[];
 layout(std430, set = 0, binding = 3) buffer Tangents { vec4 tangent[]; };     // G*(K+1)*N; xyz unit, w = 0
 
 // ---- per-asset static data (shared by every instance of an asset; built by reference::build_gpu_static) ---
-layout(std430, set = 0, binding = 4) readonly buffer RestPositions { vec4 rest_pos[]; };  // G*N, asset space rel. origin; w = inverse mass
+// v = 0: the root in asset space (relative to the asset origin); v > 0: the offset from the root. w = inverse mass.
+layout(std430, set = 0, binding = 4) readonly buffer RestPositions { vec4 rest_pos[]; };  // G*N
 // x: rest length of edge v->v+1 (0 for v = N-1); y: rest arc length of v from the root / strand rest length;
 // z: 1 when the local-shape frame turns onto the edge arriving at v, 0 when that edge is too short to have a
 //    reliable direction (the frame is carried over it); w: 0.
@@ -52,8 +59,10 @@ layout(std430, set = 0, binding = 11) readonly buffer BoneWeights { vec4 bone_we
 // selects the substep): [0..2] rows of the affine 3x4 map from asset space (rest positions) to simulation space,
 // instance motion included; [3] the rotation of that map as a quaternion (x,y,z,w); [4] its rotation since the
 // previous step (identity at a reset), computed in double on the host: the rigid motion VSP propagates; [5] the
-// previous step's [4], in this step's frame (turned with a teleport or carry; identity after a reset).
-#define TVK_SKIN_VEC4 6u
+// previous step's [4], in this step's frame (turned with a teleport or carry; identity after a reset); [6..8] rows of
+// the map's change since the previous step (this map minus the previous one carried into this step's frame; zero at
+// a reset): applied to a rest root, the move of that guide's anchor.
+#define TVK_SKIN_VEC4 9u
 layout(std430, set = 0, binding = 12) readonly buffer Skin { vec4 skin[]; };
 
 struct GroupParams {            // per strand group; std430, 48 bytes. Everything already per step (h folded in).
@@ -74,7 +83,7 @@ layout(std430, set = 0, binding = 13) readonly buffer Groups { GroupParams group
 
 struct StepParams {             // per substep; std430, 640 bytes. Everything in simulation space, per step.
   vec4 gravity;                 // xyz: g * h^2 (m); w: h (s)
-  vec4 origin_shift;            // xyz: move of the simulation origin since the last step; subtracted from the state
+  vec4 origin_shift;            // xyz: move of the simulation origin since the last step (in the anchors' move already)
   vec4 teleport;                // quaternion (x,y,z,w) turning the state about the origin (identity when none)
   uvec4 flags;                  // x: TVK_STEP_* bits; y: substep index within the frame; z, w: 0
   vec4 wind[4];                 // xyz: wind acceleration * h^2 (m), the pyramid blended per strand; w: 0
@@ -84,10 +93,13 @@ struct StepParams {             // per substep; std430, 640 bytes. Everything in
 layout(std430, set = 0, binding = 14) readonly buffer Steps { StepParams step_params[]; };
 
 #define TVK_STEP_RESET 1u       // put every strand at its skinned rest pose with zero velocity
-#define TVK_STEP_MOVE_STATE 2u  // apply origin_shift and teleport to pos/prev/prevprev before integrating
+#define TVK_STEP_MOVE_STATE 2u  // turn pos/prev/prevprev by the teleport before integrating
 
 // Counters the host reads back now and then: [pc.counter_index] strands reset after going non-finite.
 layout(std430, set = 0, binding = 15) buffer Counters { uint counters[]; };
+
+// Per guide: xyz its anchor in simulation space (the skinned rest root at the current step), w = 0.
+layout(std430, set = 0, binding = 16) buffer Anchors { vec4 anchor[]; };
 
 layout(push_constant) uniform PushConstants {   // 20 bytes
   uint guide_count;     // G: dispatches cover exactly G guides' work, every thread bounds-checks

@@ -36,6 +36,8 @@ void main() {
   }
 
   if (TVK_HAS(TVK_FEATURE_COLLISION)) {
+    // Capsules are in simulation space; the strand is relative to its anchor.
+    vec3 a = anchor[g].xyz;
     for (uint v = 0u; v < N; ++v) {
       vec4 p = pos[b + v];
       if (!(p.w > 0.0)) continue;
@@ -45,6 +47,8 @@ void main() {
       for (uint c = 0u; c < CAPSULE_COUNT; ++c) {
         vec4 c0 = step_params[pc.step_index].capsule[2u * c];
         vec4 c1 = step_params[pc.step_index].capsule[2u * c + 1u];
+        c0.xyz -= a;
+        c1.xyz -= a;
         vec3 m0 = step_params[pc.step_index].capsule_move[2u * c].xyz;
         vec3 m1 = step_params[pc.step_index].capsule_move[2u * c + 1u].xyz;
         vec3 axis = c1.xyz - c0.xyz;
@@ -134,16 +138,15 @@ void main() {
     // The history is the rest pose carried back by this step's rigid motion, so the strand moves on with the head
     // (VSP assumes that integration carries the head's previous motion); a non-finite root history falls back to
     // zero velocity.
-    vec3 p0 = skin_point(g, rest_pos[b].xyz);
     vec3 q0 = prev[b].xyz;
-    if (!finite3(q0)) q0 = p0;
+    if (!finite3(q0)) q0 = vec3(0.0);
     vec4 back = skin_delta(g);
     back = vec4(-back.xyz, back.w);
     for (uint v = 0u; v < N; ++v) {
-      vec4 rest = rest_pos[b + v];
-      vec3 p = skin_point(g, rest.xyz);
-      vec4 y = vec4(q0 + quat_rotate(back, p - p0), rest.w);
-      pos[b + v] = vec4(p, rest.w);
+      float inv_mass = rest_pos[b + v].w;
+      vec3 p = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
+      vec4 y = vec4(q0 + quat_rotate(back, p), inv_mass);
+      pos[b + v] = vec4(p, inv_mass);
       prev[b + v] = y;
       prevprev[b + v] = y;
     }

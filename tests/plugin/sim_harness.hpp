@@ -7,15 +7,19 @@
 #include <tressvk/test/vulkan.hpp>
 #include <tressvk/tressvk.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
 namespace tressvk::test {
 
+using Point = std::array<double, 3>;
+
+// Positions in simulation space, each the GPU's anchor + offset summed in double (engine::read_hair_state).
 struct GpuState {
-  std::vector<sim::Vec4> pos;       // G*(K+1)*N
-  std::vector<sim::Vec4> prev;      // G*N
-  std::vector<sim::Vec4> prevprev;  // G*N
+  std::vector<Point> pos;           // G*(K+1)*N
+  std::vector<Point> prev;          // G*N
+  std::vector<Point> prevprev;      // G*N
   std::vector<sim::Vec4> tangent;   // G*(K+1)*N
 };
 
@@ -36,7 +40,8 @@ class GpuInstance {
   const GpuState& state() const { return state_; }
   std::vector<std::string> recorded_passes() const;
   TvkInstanceStats stats() const;
-  // Overwrites one position on the GPU (fault injection), recorded with the barriers it needs.
+  // Overwrites one position on the GPU (fault injection; the value is an offset from the strand's anchor), recorded
+  // with the barriers it needs.
   void poke_position(size_t vertex, const sim::Vec4& value);
   // Copies positions, previous positions and tangents back (after a frame).
   void read_state();

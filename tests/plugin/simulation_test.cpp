@@ -29,6 +29,7 @@ constexpr double kStretchBound = 0.05;
 
 struct SceneResult {
   double step_error_max = 0;
+  double shape_error_max = 0;  // the same, for each vertex's offset from its strand's root (the strand's shape)
   double stretch_max = 0;
   uint32_t nan_strands = 0;
   uint32_t exploded_strands = 0;
@@ -56,11 +57,20 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
       if (f > 0) ref.set_state(gpu.state().pos, gpu.state().prev, gpu.state().prevprev);
       ref.advance(frame);
       gpu.run_frame(frame);
-      const auto err = reference::position_error(std::span<const sim::Vec4>(gpu.state().pos), ref.positions(), median);
+      const auto err = reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(), median);
       result.step_error_max = std::max(result.step_error_max, err.max_rel);
-      const auto st = reference::stretch(std::span<const sim::Vec4>(gpu.state().pos), ref.rest());
+      const uint32_t n = hair.vertices_per_strand;
+      for (size_t i = 0; i < ref.positions().size(); ++i) {
+        const size_t root = i / n * n;
+        const test::Point& g = gpu.state().pos[i];
+        const test::Point& gr = gpu.state().pos[root];
+        const reference::Vec3 gpu_shape{g[0] - gr[0], g[1] - gr[1], g[2] - gr[2]};
+        const reference::Vec3 ref_shape = ref.positions()[i] - ref.positions()[root];
+        result.shape_error_max = std::max(result.shape_error_max, reference::length(gpu_shape - ref_shape) / median);
+      }
+      const auto st = reference::stretch(std::span<const test::Point>(gpu.state().pos), ref.rest());
       result.stretch_max = std::max(result.stretch_max, st.max);
-      const auto health = reference::health(std::span<const sim::Vec4>(gpu.state().pos), ref.rest());
+      const auto health = reference::health(std::span<const test::Point>(gpu.state().pos), ref.rest());
       result.nan_strands = std::max(result.nan_strands, health.nan_strands);
       result.exploded_strands = std::max(result.exploded_strands, health.exploded_strands);
     }
@@ -173,8 +183,8 @@ TEST_CASE("the far scene (10 km from the origin) matches shake", "[plugin][simul
     for (uint32_t f = 0; f < 60; ++f) {
       test::run_frame_batched(ctx.get(), {&near_inst, &far_inst},
                               {reference::scene_frame("shake", f, geometry), reference::scene_frame("far", f, geometry)});
-      const auto e = reference::position_error(std::span<const sim::Vec4>(near_inst.state().pos),
-                                               std::span<const sim::Vec4>(far_inst.state().pos),
+      const auto e = reference::position_error(std::span<const test::Point>(near_inst.state().pos),
+                                               std::span<const test::Point>(far_inst.state().pos),
                                                ref.median_strand_length());
       worst = std::max(worst, e.max_rel);
     }
@@ -182,6 +192,36 @@ TEST_CASE("the far scene (10 km from the origin) matches shake", "[plugin][simul
     CHECK(worst <= 1e-5);
   }
   tressvk_destroy_asset(a);
+}
+
+TEST_CASE("strands far from the asset origin keep strand-sized precision", "[plugin][simulation]") {
+  // The same groom, once with its asset origin at the hair and once with the origin 5.4 m away (as an asset whose
+  // origin is at a character's feet, or a groom spread over a large creature): the GPU keeps positions relative to
+  // each strand's anchor, so the strand's shape is as precise as near the origin. Held relative to the origin
+  // instead, every coordinate would carry up to 2.4e-7 m of rounding (16x more than near it), a direction error on
+  // every short segment that the strand's lever arm multiplies.
+  const asset::HairAsset near_hair = test::small_groom("straight", 32, 1);
+  asset::HairAsset far_hair = near_hair;
+  const std::array<double, 3> shift{4.0, -3.0, 2.0};
+  for (size_t k = 0; k < 3; ++k) far_hair.origin[k] -= shift[k];
+  for (auto& p : far_hair.rest_positions)
+    for (size_t k = 0; k < 3; ++k) p[k] = static_cast<float>(static_cast<double>(p[k]) + shift[k]);
+  const SceneResult near_r = run_scene(near_hair, "shake", 40);
+  const SceneResult far_r = run_scene(far_hair, "shake", 40);
+  INFO("step error, origin at the hair: " << near_r.step_error_max << " (shape " << near_r.shape_error_max
+       << "), origin 5.4 m away: " << far_r.step_error_max << " (shape " << far_r.shape_error_max << ")");
+  check_scene(far_r);
+  // What stays is the anchors' own float rounding at 5.4 m (half an ulp per coordinate, 4e-7 m in all): it offsets
+  // each strand rigidly and, through the pinned root, tugs its first segment. Both bounds allow one such rounding
+  // (relative to the median strand) over the near run; the shape bound also allows the two runs' different rounding
+  // (the rest pose is rounded at the far coordinates when the asset is built), a factor of 2. Measured on lavapipe:
+  // near 4.8e-7 (shape 4.8e-7), far 4.2e-6 (shape 2.3e-6); with positions held relative to the simulation origin,
+  // as before strand anchors, far was 2.7e-5 (shape 2.9e-5) and near 1.1e-6.
+  const double median = reference::Simulator(near_hair, default_params(near_hair),
+                                             TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT).median_strand_length();
+  const double anchor_rounding = std::sqrt(3.0) * std::ldexp(1.0, -24) * 8.0 / median;  // coordinates below 8 m
+  CHECK(far_r.shape_error_max <= 2.0 * near_r.shape_error_max + anchor_rounding);
+  CHECK(far_r.step_error_max <= near_r.step_error_max + anchor_rounding);
 }
 
 TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][simulation]") {
@@ -210,10 +250,10 @@ TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][sim
       r2.advance(frame);
       test::run_frame_batched(ctx.get(), {&g1, &g2}, {frame, frame});
       const double m = r1.median_strand_length();
-      e1 = std::max(e1, reference::position_error(std::span<const sim::Vec4>(g1.state().pos), r1.positions(), m).max_rel);
-      e2 = std::max(e2, reference::position_error(std::span<const sim::Vec4>(g2.state().pos), r2.positions(), m).max_rel);
-      apart = std::max(apart, reference::position_error(std::span<const sim::Vec4>(g1.state().pos),
-                                                        std::span<const sim::Vec4>(g2.state().pos), m).max_rel);
+      e1 = std::max(e1, reference::position_error(std::span<const test::Point>(g1.state().pos), r1.positions(), m).max_rel);
+      e2 = std::max(e2, reference::position_error(std::span<const test::Point>(g2.state().pos), r2.positions(), m).max_rel);
+      apart = std::max(apart, reference::position_error(std::span<const test::Point>(g1.state().pos),
+                                                        std::span<const test::Point>(g2.state().pos), m).max_rel);
     }
     INFO("errors " << e1 << ", " << e2 << "; the two instances differ by up to " << apart);
     CHECK(e1 <= kStepErrorBound);
@@ -250,9 +290,9 @@ TEST_CASE("a strand that goes non-finite is reset and counted, and nothing else 
     gpu.run_frame(frame);
     CHECK(gpu.stats().nonfinite_strand_resets == 1);
     CHECK(ref.nonfinite_resets() == 1);
-    const auto health = reference::health(std::span<const sim::Vec4>(gpu.state().pos), ref.rest());
+    const auto health = reference::health(std::span<const test::Point>(gpu.state().pos), ref.rest());
     CHECK(health.nan_strands == 0);
-    const auto err = reference::position_error(std::span<const sim::Vec4>(gpu.state().pos), ref.positions(),
+    const auto err = reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(),
                                                ref.median_strand_length());
     CHECK(err.max_rel <= kStepErrorBound);
   }
@@ -271,16 +311,16 @@ TEST_CASE("without gravity the rest pose is a fixed point on the GPU", "[plugin]
     const auto geometry = reference::scene_geometry(ref.rest());
     gpu.run_frame(reference::scene_frame("settle", 0, geometry));
     const auto first = gpu.state().pos;
-    std::vector<sim::Vec4> before_last;
+    std::vector<test::Point> before_last;
     for (uint32_t f = 1; f < 60; ++f) {
       if (f == 59) before_last = gpu.state().pos;
       gpu.run_frame(reference::scene_frame("settle", f, geometry));
     }
     const double m = ref.median_strand_length();
-    const auto drift = reference::position_error(std::span<const sim::Vec4>(first),
-                                                 std::span<const sim::Vec4>(gpu.state().pos), m);
-    const auto flicker = reference::position_error(std::span<const sim::Vec4>(before_last),
-                                                   std::span<const sim::Vec4>(gpu.state().pos), m);
+    const auto drift = reference::position_error(std::span<const test::Point>(first),
+                                                 std::span<const test::Point>(gpu.state().pos), m);
+    const auto flicker = reference::position_error(std::span<const test::Point>(before_last),
+                                                   std::span<const test::Point>(gpu.state().pos), m);
     INFO("drift after 1 s: " << drift.max_rel << ", motion in the last frame: " << flicker.max_rel);
     // In double the rest pose is exact (the reference tests hold it to 1e-12). In float32 each step rounds a
     // groom-sized coordinate by ~1e-7 of a strand and the constraints re-project it, so a second (120 steps) may
@@ -369,7 +409,7 @@ TEST_CASE("bone-skinned hair matches the reference (Ratboy, 105 bones rocking ou
       if (f > 0) ref.set_state(gpu.state().pos, gpu.state().prev, gpu.state().prevprev);
       ref.advance(frame);
       gpu.run_frame(frame);
-      worst = std::max(worst, reference::position_error(std::span<const sim::Vec4>(gpu.state().pos), ref.positions(),
+      worst = std::max(worst, reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(),
                                                         ref.median_strand_length()).max_rel);
     }
     const std::vector<std::string> passes = gpu.recorded_passes();

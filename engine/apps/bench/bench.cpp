@@ -133,21 +133,21 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
     state_is_previous = true;
     if (!measured(f)) continue;
     if (step_error_now) {
-      const auto e = reference::position_error(std::span<const sim::Vec4>(state.positions), step_ref.positions(), median_length);
+      const auto e = reference::position_error(std::span<const std::array<double, 3>>(state.positions), step_ref.positions(), median_length);
       step_errors.push_back(e.max_rel);
       out.step_error_max_rel = std::max(out.step_error_max_rel, e.max_rel);
     }
     if (opt.trajectory) {
       const auto te =
-          reference::position_error(std::span<const sim::Vec4>(state.positions), traj_ref.positions(), median_length);
+          reference::position_error(std::span<const std::array<double, 3>>(state.positions), traj_ref.positions(), median_length);
       traj_sum_sq += te.rms_rel * te.rms_rel;
       out.trajectory_error_max_rel = std::max(out.trajectory_error_max_rel, te.max_rel);
     }
     ++traj_count;
-    const auto st = reference::stretch(std::span<const sim::Vec4>(state.positions), step_ref.rest());
+    const auto st = reference::stretch(std::span<const std::array<double, 3>>(state.positions), step_ref.rest());
     stretch_mean_sum += st.mean;
     out.stretch_max = std::max(out.stretch_max, st.max);
-    const auto h = reference::health(std::span<const sim::Vec4>(state.positions), step_ref.rest());
+    const auto h = reference::health(std::span<const std::array<double, 3>>(state.positions), step_ref.rest());
     out.nan_strands = std::max(out.nan_strands, h.nan_strands);
     out.exploded_strands = std::max(out.exploded_strands, h.exploded_strands);
   }

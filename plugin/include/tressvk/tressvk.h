@@ -178,16 +178,25 @@ TVK_API TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSet
  * whose frame was not set since its last simulation keeps its pose and advances no time (dt 0). */
 TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame);
 
+/* The simulated state, for hosts that draw or read it themselves. Vertex v of rendered strand s (guides first,
+ * then follow layers) is at anchors[s % guide_count].xyz + positions[s * vertices_per_strand + v].xyz in simulation
+ * space (world axes, origin at `origin`), and at origin + that in the world. Positions are kept relative to each
+ * guide's anchor (its skinned root) so that float32 rounding is relative to the strand, not to the character. */
 typedef struct TvkInstanceBuffers {
-  VkBuffer positions;                /* vec4 per vertex of every rendered strand (guides, then follow layers): xyz in
-                                        simulation space (world axes, origin at `origin`), w = inverse mass */
+  VkBuffer positions;                /* vec4 per vertex of every rendered strand (guides, then follow layers): xyz the
+                                        offset from the strand's anchor, w = inverse mass */
   VkBuffer tangents;                 /* vec4 per vertex, same order; xyz unit */
-  VkBuffer previous_positions;       /* vec4 per guide vertex, the previous step */
+  VkBuffer previous_positions;       /* vec4 per guide vertex, the previous step (offset from the same anchor) */
   VkBuffer previous_previous_positions; /* vec4 per guide vertex, two steps back (for checking against the
                                         reference, tressvk::reference::Simulator::set_state) */
+  VkBuffer anchors;                  /* vec4 per guide: xyz its anchor in simulation space, w = 0 */
   VkDeviceSize positions_size;
   VkDeviceSize tangents_size;
   VkDeviceSize previous_positions_size;  /* also the size of previous_previous_positions */
+  VkDeviceSize anchors_size;
+  uint32_t guide_count;
+  uint32_t vertices_per_strand;
+  uint32_t follow_per_guide;         /* rendered strands = guide_count * (1 + follow_per_guide) */
   double origin[3];                  /* m, world position of the simulation-space origin after the last frame */
 } TvkInstanceBuffers;
 
@@ -223,7 +232,7 @@ typedef struct TvkSimulateInfo {
  * - on entry, TressVK orders its work after earlier vertex-shader, fragment-shader, compute and transfer accesses
  *   to the instances' buffers (the previous frame's draws and any host copies);
  * - between passes, buffer barriers scoped to exactly the buffers a pass reads and writes;
- * - on exit, positions and tangents are visible to VERTEX_SHADER and COMPUTE_SHADER storage reads. A host that
+ * - on exit, positions, tangents and anchors are visible to VERTEX_SHADER and COMPUTE_SHADER storage reads. A host that
  *   copies them (transfer) records its own COMPUTE_SHADER write -> COPY read barrier.
  * State disturbed in the command buffer: the bound compute pipeline, compute descriptor set 0 and compute push
  * constants. Graphics state is untouched. */

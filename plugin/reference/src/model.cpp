@@ -139,8 +139,11 @@ GpuStatic build_gpu_static(const ModelRest& m) {
   s.rest_positions.resize(vcount);
   s.rest_info.resize(vcount);
   s.rest_edge_local.resize(vcount);
+  const uint32_t n = m.vertices_per_strand;
   for (size_t i = 0; i < vcount; ++i) {
-    s.rest_positions[i] = narrow(m.rest_pos[i], m.inv_mass[i]);
+    // The root as it is; the other vertices as offsets from it, formed in double (see layout.glsl).
+    const size_t root = i / n * n;
+    s.rest_positions[i] = narrow(i == root ? m.rest_pos[i] : m.rest_pos[i] - m.rest_pos[root], m.inv_mass[i]);
     s.rest_info[i] = {static_cast<float>(m.rest_length[i]), static_cast<float>(m.arc_fraction[i]),
                       m.frame_turns[i] ? 1.0f : 0.0f, 0.0f};
     s.rest_edge_local[i] = narrow(m.rest_edge_local[i], 0.0);

@@ -201,6 +201,8 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     last_rot_.clear();
     for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
     last_delta_.assign(st.skin.size(), Quat{});
+    last_rows_.clear();
+    for (const SkinTransform& t : st.skin) last_rows_.push_back(t.rows);
     last_caps_.assign(st.capsules.begin(), st.capsules.begin() + st.capsule_count);
     plan.steps.push_back(st);
     pending_reset_ = false;
@@ -257,6 +259,26 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
       if (db.w < 0) db = {-db.x, -db.y, -db.z, -db.w};
       st.skin[i].delta_before = db;
     }
+    // Each map's change since the previous step: M - Rc (M_before - s), with the previous map carried like the state
+    // (p' = Rc (p - s)). A frame that switches between bones and one rigid transform compares with the previous
+    // step's first transform.
+    for (size_t i = 0; i < st.skin.size(); ++i) {
+      if (last_rows_.empty()) break;
+      const auto& before = last_rows_[last_rows_.size() == st.skin.size() ? i : 0];
+      const auto rc = matrix_from_quat(st.teleport);
+      for (size_t r = 0; r < 3; ++r) {
+        for (size_t c = 0; c < 4; ++c) {
+          double carried = 0;
+          for (size_t j = 0; j < 3; ++j) {
+            const double b = c < 3 ? before[j][c] : before[j][3] - st.origin_shift[static_cast<int>(j)];
+            carried += rc[r][j] * b;
+          }
+          st.skin[i].move_rows[r][c] = st.skin[i].rows[r][c] - carried;
+        }
+      }
+    }
+    last_rows_.clear();
+    for (const SkinTransform& t : st.skin) last_rows_.push_back(t.rows);
     last_rot_.clear();
     for (const SkinTransform& t : st.skin) last_rot_.push_back(t.rotation);
     last_delta_.clear();
@@ -352,6 +374,10 @@ GpuFrame to_gpu(const FramePlan& plan) {
       out.skin.push_back(f4(t.rotation));
       out.skin.push_back(f4(t.delta));
       out.skin.push_back(f4(t.delta_before));
+      for (size_t r = 0; r < 3; ++r) {
+        out.skin.push_back({static_cast<float>(t.move_rows[r][0]), static_cast<float>(t.move_rows[r][1]),
+                            static_cast<float>(t.move_rows[r][2]), static_cast<float>(t.move_rows[r][3])});
+      }
     }
   }
   return out;

@@ -52,6 +52,26 @@ void Simulator::set_state(std::span<const sim::Vec4> pos, std::span<const sim::V
   }
 }
 
+void Simulator::set_state(std::span<const Vec3> pos, std::span<const Vec3> prev, std::span<const Vec3> prevprev) {
+  const size_t guides = rest_.rest_pos.size();
+  if ((pos.size() != guides && pos.size() != pos_.size()) || prev.size() != guides || prevprev.size() != guides) {
+    throw std::invalid_argument("reference: set_state sizes do not match the asset");
+  }
+  std::copy(pos.begin(), pos.end(), pos_.begin());
+  std::copy(prev.begin(), prev.end(), prev_.begin());
+  std::copy(prevprev.begin(), prevprev.end(), prevprev_.begin());
+}
+
+void Simulator::set_state(std::span<const Point> pos, std::span<const Point> prev, std::span<const Point> prevprev) {
+  auto widen = [](std::span<const Point> in) {
+    std::vector<Vec3> out(in.size());
+    for (size_t i = 0; i < in.size(); ++i) out[i] = {in[i][0], in[i][1], in[i][2]};
+    return out;
+  };
+  const std::vector<Vec3> p = widen(pos), q = widen(prev), r = widen(prevprev);
+  set_state(std::span<const Vec3>(p), std::span<const Vec3>(q), std::span<const Vec3>(r));
+}
+
 FramePlan Simulator::advance(const TvkSimFrame& frame) {
   FramePlan plan = planner_.plan(frame);
   simulate(plan);

@@ -14,11 +14,11 @@ namespace tressvk::sim {
 
 // ---- descriptor set 0 bindings (all storage buffers) ----
 enum Binding : uint32_t {
-  kBindingPositions = 0,        // vec4 x G*(K+1)*N, read-write
+  kBindingPositions = 0,        // vec4 x G*(K+1)*N, read-write (offsets from the strand's anchor)
   kBindingPrevPositions = 1,    // vec4 x G*N, read-write
   kBindingPrevPrevPositions = 2,// vec4 x G*N, read-write
   kBindingTangents = 3,         // vec4 x G*(K+1)*N, written
-  kBindingRestPositions = 4,    // vec4 x G*N, static
+  kBindingRestPositions = 4,    // vec4 x G*N, static (v = 0: the root; v > 0: offset from the root)
   kBindingRestInfo = 5,         // vec4 x G*N, static
   kBindingRestEdgeLocal = 6,    // vec4 x G*N, static
   kBindingRootFrames = 7,       // vec4 x G, static
@@ -30,8 +30,9 @@ enum Binding : uint32_t {
   kBindingGroups = 13,          // GroupParams x groups, per frame
   kBindingSteps = 14,           // StepParams x substeps, per frame
   kBindingCounters = 15,        // uint per instance, read-write
+  kBindingAnchors = 16,         // vec4 x G, written by integrate: each guide's anchor (its skinned rest root)
 };
-inline constexpr uint32_t kBindingCount = 16;
+inline constexpr uint32_t kBindingCount = 17;
 
 // ---- specialization constants ----
 enum SpecConstant : uint32_t {
@@ -53,8 +54,9 @@ enum Feature : uint32_t {
 inline constexpr uint32_t kStepReset = 1u;       // StepParams::flags[0] bits
 inline constexpr uint32_t kStepMoveState = 2u;
 inline constexpr uint32_t kMaxCapsules = 8;
-inline constexpr uint32_t kSkinVec4PerBone = 6;  // 3 affine rows, rotation, rotation since the last step, the
-                                                  // previous step's rotation since the one before
+inline constexpr uint32_t kSkinVec4PerBone = 9;  // 3 affine rows, rotation, rotation since the last step, the
+                                                  // previous step's rotation since the one before, 3 rows of the
+                                                  // map's change since the last step (the anchors' move)
 
 struct GroupParams {
   float velocity_keep;

@@ -70,27 +70,54 @@ int main(int argc, char** argv) {
       TvkSimFrame frame = scene_frame(scene, f, geo);
       if (std::getenv("PROBE_NOCAPS") != nullptr) frame.capsule_count = 0;
       if (f > 0) {
+        // PROBE_RELATIVE=1: the state held as a float anchor per strand (its root) plus float offsets from it.
+        const bool relative = std::getenv("PROBE_RELATIVE") != nullptr;
+        const size_t nn = a.rest().vertices_per_strand;
         auto pack = [&](std::span<const Vec3> s, bool jitter) {
-          std::vector<tressvk::sim::Vec4> out(s.size());
+          std::vector<Vec3> out(s.size());
           for (size_t i = 0; i < s.size(); ++i) {
+            const Vec3 root = s[(i / nn) * nn];
             for (int c = 0; c < 3; ++c) {
-              float x = static_cast<float>(s[i][c]);
+              const double anchor = relative ? static_cast<double>(static_cast<float>(root[c])) : 0.0;
+              float x = static_cast<float>(s[i][c] - anchor);
               if (jitter) x = std::nextafter(x, (rng() & 1u) ? INFINITY : -INFINITY);
-              out[i][static_cast<size_t>(c)] = x;
+              out[i][c] = anchor + static_cast<double>(x);
             }
           }
           return out;
         };
         const auto p = pack(a.positions(), false), q = pack(a.prev_positions(), false), r = pack(a.prevprev_positions(), false);
-        const auto pj = pack(a.positions(), true), qj = pack(a.prev_positions(), true), rj = pack(a.prevprev_positions(), true);
+        auto pj = pack(a.positions(), true), qj = pack(a.prev_positions(), true), rj = pack(a.prevprev_positions(), true);
+        if (std::getenv("PROBE_ANCHOR") != nullptr) {
+          // The GPU's anchor rounding alone: every strand (with its history) moved rigidly by its root's float
+          // rounding, as a state read back as float anchor + offsets is; compared below after removing the new
+          // anchor's rounding, which the GPU adds to its result.
+          const size_t guides = a.rest().guide_count;
+          pj = p;
+          qj = q;
+          rj = r;
+          for (std::vector<Vec3>* v : {&pj, &qj, &rj}) {
+            for (size_t i = 0; i < v->size(); ++i) {
+              const Vec3 root = p[((i / nn) % guides) * nn];
+              for (int c = 0; c < 3; ++c) (*v)[i][c] += static_cast<double>(static_cast<float>(root[c])) - root[c];
+            }
+          }
+        }
         a.set_state(p, q, r);
         b.set_state(pj, qj, rj);
       }
       a.advance(frame);
       b.advance(frame);
       const auto pa = a.positions(), pb = b.positions();
+      const bool anchor_probe = std::getenv("PROBE_ANCHOR") != nullptr;
+      const size_t n_per = a.rest().vertices_per_strand, g_count = a.rest().guide_count;
       for (size_t i = 0; i < pa.size(); ++i) {
-        const double d = length(pa[i] - pb[i]) / median;
+        Vec3 e1{};
+        if (anchor_probe) {
+          const Vec3 root = pa[((i / n_per) % g_count) * n_per];
+          for (int c = 0; c < 3; ++c) e1[c] = static_cast<double>(static_cast<float>(root[c])) - root[c];
+        }
+        const double d = length(pa[i] + e1 - pb[i]) / median;
         if (d > worst) {
           worst = d;
           worst_frame = f;

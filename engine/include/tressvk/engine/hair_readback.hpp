@@ -13,22 +13,27 @@
 
 namespace tressvk::engine {
 
+// Positions in simulation space (world axes, origin at TvkInstanceBuffers::origin): each strand's anchor plus the
+// vertex's offset from it, summed in double, so nothing is rounded beyond what the GPU holds.
 struct HairState {
-  std::vector<std::array<float, 4>> positions;           // every rendered strand: guides, then follow layers
-  std::vector<std::array<float, 4>> previous;            // guides
-  std::vector<std::array<float, 4>> previous_previous;   // guides
+  std::vector<std::array<double, 3>> positions;          // every rendered strand: guides, then follow layers
+  std::vector<std::array<double, 3>> previous;           // guides
+  std::vector<std::array<double, 3>> previous_previous;  // guides
   std::vector<std::array<float, 4>> tangents;            // every rendered strand
+  std::vector<std::array<float, 4>> anchors;             // per guide (xyz), as the GPU holds them
 };
 
 inline HairState read_hair_state(const Device& device, TvkInstance instance) {
   TvkInstanceBuffers b{};
   if (tressvk_get_instance_buffers(instance, &b) != TVK_SUCCESS)
     throw std::runtime_error("tressvk_get_instance_buffers failed");
-  const VkBuffer sources[4] = {b.positions, b.previous_positions, b.previous_previous_positions, b.tangents};
-  const VkDeviceSize sizes[4] = {b.positions_size, b.previous_positions_size, b.previous_positions_size,
-                                 b.tangents_size};
-  std::array<Buffer, 4> copies;
-  for (size_t i = 0; i < 4; ++i)
+  constexpr size_t kCount = 5;
+  const VkBuffer sources[kCount] = {b.positions, b.previous_positions, b.previous_previous_positions, b.tangents,
+                                    b.anchors};
+  const VkDeviceSize sizes[kCount] = {b.positions_size, b.previous_positions_size, b.previous_positions_size,
+                                      b.tangents_size, b.anchors_size};
+  std::array<Buffer, kCount> copies;
+  for (size_t i = 0; i < kCount; ++i)
     copies[i] = create_buffer(device, sizes[i], VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback);
   device.run_commands([&](VkCommandBuffer cmd) {
     VkMemoryBarrier2 barrier{};
@@ -42,16 +47,26 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &barrier;
     vkCmdPipelineBarrier2(cmd, &dep);
-    for (size_t i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < kCount; ++i) {
       const VkBufferCopy region{0, 0, sizes[i]};
       vkCmdCopyBuffer(cmd, sources[i], copies[i].handle(), 1, &region);
     }
   });
   using Vec4 = std::array<float, 4>;
   HairState s;
-  s.positions = read_buffer_as<Vec4>(device, copies[0], sizes[0] / sizeof(Vec4));
-  s.previous = read_buffer_as<Vec4>(device, copies[1], sizes[1] / sizeof(Vec4));
-  s.previous_previous = read_buffer_as<Vec4>(device, copies[2], sizes[2] / sizeof(Vec4));
+  s.anchors = read_buffer_as<Vec4>(device, copies[4], sizes[4] / sizeof(Vec4));
+  const size_t n = b.vertices_per_strand, guides = b.guide_count;
+  const auto absolute = [&](const std::vector<Vec4>& offsets) {
+    std::vector<std::array<double, 3>> out(offsets.size());
+    for (size_t i = 0; i < offsets.size(); ++i) {
+      const Vec4& a = s.anchors[(i / n) % guides];
+      for (size_t c = 0; c < 3; ++c) out[i][c] = static_cast<double>(a[c]) + static_cast<double>(offsets[i][c]);
+    }
+    return out;
+  };
+  s.positions = absolute(read_buffer_as<Vec4>(device, copies[0], sizes[0] / sizeof(Vec4)));
+  s.previous = absolute(read_buffer_as<Vec4>(device, copies[1], sizes[1] / sizeof(Vec4)));
+  s.previous_previous = absolute(read_buffer_as<Vec4>(device, copies[2], sizes[2] / sizeof(Vec4)));
   s.tangents = read_buffer_as<Vec4>(device, copies[3], sizes[3] / sizeof(Vec4));
   return s;
 }

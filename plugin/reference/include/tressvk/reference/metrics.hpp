@@ -14,6 +14,7 @@ namespace tressvk::reference {
 
 inline Vec3 as_vec3(const Vec3& v) { return v; }
 inline Vec3 as_vec3(const sim::Vec4& v) { return {v[0], v[1], v[2]}; }
+inline Vec3 as_vec3(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
 
 struct ErrorStats {
   double max_rel = 0;  // largest vertex distance / median strand length

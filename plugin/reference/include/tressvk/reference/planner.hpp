@@ -34,6 +34,9 @@ struct SkinTransform {
   // The previous step's delta, in the frame of this step's state (turned with a teleport or carry; identity after
   // a reset): VSP removes the rigid motion integration already carried as velocity.
   Quat delta_before;
+  // This map minus the previous step's map carried into this step's frame (turned and shifted with the state; zero
+  // at a reset): applied to a rest root, the move of that guide's anchor since the previous step, exact in double.
+  std::array<std::array<double, 4>, 3> move_rows{};
   Vec3 apply(Vec3 x) const {
     return {rows[0][0] * x.x + rows[0][1] * x.y + rows[0][2] * x.z + rows[0][3],
             rows[1][0] * x.x + rows[1][1] * x.y + rows[1][2] * x.z + rows[1][3],
@@ -108,6 +111,7 @@ class FramePlanner {
   std::vector<Pose> last_bones_;
   std::vector<Quat> last_rot_;  // skin rotations of the last planned step
   std::vector<Quat> last_delta_;  // skin deltas of the last planned step
+  std::vector<std::array<std::array<double, 4>, 3>> last_rows_;  // skin maps of the last planned step
   std::vector<CapsuleSim> last_caps_;  // capsules of the last planned step (its frame)
 };
 

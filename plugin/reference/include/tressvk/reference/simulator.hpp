@@ -7,6 +7,7 @@
 //   to_gpu(plan), set_state() from the GPU state read back before the frame, simulate(plan), compare.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -34,6 +35,10 @@ class Simulator {
   // Loads float state as the GPU holds it: pos has G*N (guides) or G*(K+1)*N entries, prev and prevprev G*N.
   // The w components are ignored (inverse masses come from the asset).
   void set_state(std::span<const sim::Vec4> pos, std::span<const sim::Vec4> prev, std::span<const sim::Vec4> prevprev);
+  // The same from double positions (e.g. a GPU state held as per-strand anchor + float offset, summed in double).
+  void set_state(std::span<const Vec3> pos, std::span<const Vec3> prev, std::span<const Vec3> prevprev);
+  using Point = std::array<double, 3>;  // e.g. tressvk::engine::HairState's positions
+  void set_state(std::span<const Point> pos, std::span<const Point> prev, std::span<const Point> prevprev);
 
   // Runs every substep of the plan, then the follow update (when the plan has steps).
   void simulate(const FramePlan& plan);
