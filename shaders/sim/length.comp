@@ -86,40 +86,51 @@ void main() {
 
   for (uint it = 0u; it < gp.length_iterations; ++it) {
     bool last_sweep = it + 1u == gp.length_iterations;
+    // The sweep carries the vertex it just moved (and its previous position) to the next edge in registers:
+    // reloading it would wait on its own store, a round trip through the memory hierarchy at every vertex of the
+    // serial walk. The arithmetic is exactly the same.
+    vec4 p = pos[b];
+    vec3 pp = prev[b].xyz;
     for (uint v = 0u; v + 1u < N; ++v) {
-      vec4 p = pos[b + v];
       vec4 n = pos[b + v + 1u];
+      vec3 pn = prev[b + v + 1u].xyz;
       float wb = n.w > 0.0 ? 1.0 : 0.0;
       // The last sweep moves only the tip-ward end (follow the leader), so every step ends with each segment
       // at its rest length; the sweeps before it share the correction between both ends.
       float wa = (p.w > 0.0 && !(last_sweep && wb > 0.0)) ? 1.0 : 0.0;
       float wsum = wa + wb;
-      if (wsum == 0.0) continue;
-      vec3 d = n.xyz - p.xyz;
-      float len = length(d);
-      float rest = rest_info[b + v].x;
-      vec3 dir = d;
-      // Compressed: restored along its direction blended with its direction at the previous step by the missing
-      // length, which stays defined as the segment vanishes (normalize(d) would not); turned back on that
-      // direction (a flip within one step), also by the fold guard, so that the blend never nears zero.
-      vec3 was = prev[b + v + 1u].xyz - prev[b + v].xyz;
-      float wl = length(was);
-      if (wl > kDirectionEps * rest) {
-        vec3 u = was / wl;
-        float blend = max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
-        if (blend > 0.0) dir = d + blend * u;
+      if (wsum > 0.0) {
+        vec3 d = n.xyz - p.xyz;
+        float len = length(d);
+        float rest = rest_info[b + v].x;
+        vec3 dir = d;
+        // Compressed: restored along its direction blended with its direction at the previous step by the missing
+        // length, which stays defined as the segment vanishes (normalize(d) would not); turned back on that
+        // direction (a flip within one step), also by the fold guard, so that the blend never nears zero.
+        vec3 was = pn - pp;
+        float wl = length(was);
+        if (wl > kDirectionEps * rest) {
+          vec3 u = was / wl;
+          float blend = max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
+          if (blend > 0.0) dir = d + blend * u;
+        }
+        float dl = length(dir);
+        if (dl > 0.0) {
+          vec3 corr = (d - (rest / dl) * dir) / wsum;
+          if (wa > 0.0) p = vec4(p.xyz + wa * corr, p.w);
+          if (wb > 0.0) n = vec4(n.xyz - wb * corr, n.w);
+          // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),
+          // which keeps the strand's momentum plausible and removes FTL's energy gain.
+          if (last_sweep && wa == 0.0 && wb > 0.0 && p.w > 0.0) {
+            prev[b + v] = vec4(pp - kFtlVelocityCorrection * corr, p.w);
+          }
+        }
       }
-      float dl = length(dir);
-      if (!(dl > 0.0)) continue;
-      vec3 corr = (d - (rest / dl) * dir) / wsum;
-      if (wa > 0.0) pos[b + v] = vec4(p.xyz + wa * corr, p.w);
-      if (wb > 0.0) pos[b + v + 1u] = vec4(n.xyz - wb * corr, n.w);
-      // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),
-      // which keeps the strand's momentum plausible and removes FTL's energy gain.
-      if (last_sweep && wa == 0.0 && wb > 0.0 && p.w > 0.0) {
-        prev[b + v] = vec4(prev[b + v].xyz - kFtlVelocityCorrection * corr, p.w);
-      }
+      pos[b + v] = p;  // final for this sweep
+      p = n;
+      pp = pn;
     }
+    pos[b + N - 1u] = p;
   }
 
   if (TVK_HAS(TVK_FEATURE_MAX_SPEED) && gp.max_step > 0.0) {
