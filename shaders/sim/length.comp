@@ -91,9 +91,20 @@ void main() {
     // serial walk. The arithmetic is exactly the same.
     vec4 p = pos[b];
     vec3 pp = prev[b].xyz;
+    // The next vertex is fetched one edge ahead (it is not written before its turn), so its memory latency overlaps
+    // this edge's arithmetic.
+    vec4 n_next = pos[b + 1u];
+    vec3 pn_next = prev[b + 1u].xyz;
+    float rest_next = rest_info[b].x;
     for (uint v = 0u; v + 1u < N; ++v) {
-      vec4 n = pos[b + v + 1u];
-      vec3 pn = prev[b + v + 1u].xyz;
+      vec4 n = n_next;
+      vec3 pn = pn_next;
+      float rest = rest_next;
+      if (v + 2u < N) {
+        n_next = pos[b + v + 2u];
+        pn_next = prev[b + v + 2u].xyz;
+        rest_next = rest_info[b + v + 1u].x;
+      }
       float wb = n.w > 0.0 ? 1.0 : 0.0;
       // The last sweep moves only the tip-ward end (follow the leader), so every step ends with each segment
       // at its rest length; the sweeps before it share the correction between both ends.
@@ -102,7 +113,6 @@ void main() {
       if (wsum > 0.0) {
         vec3 d = n.xyz - p.xyz;
         float len = length(d);
-        float rest = rest_info[b + v].x;
         vec3 dir = d;
         // Compressed: restored along its direction blended with its direction at the previous step by the missing
         // length, which stays defined as the segment vanishes (normalize(d) would not); turned back on that

@@ -22,15 +22,25 @@ void main() {
   for (uint v = 0u; v < N; ++v) P[v] = pos[b + v];
   for (uint it = 0u; it < gp.local_iterations; ++it) {
     vec4 f = root;
+    // The rest data of the next vertex is fetched one vertex ahead, so its memory latency overlaps this vertex's
+    // arithmetic instead of stalling the serial walk.
+    vec4 info_in = rest_info[b];
+    vec4 info = rest_info[b + 1u];
+    vec3 edge = rest_edge_local[b + 1u].xyz;
     for (uint v = 1u; v + 1u < N; ++v) {
+      vec4 info_next = rest_info[b + v + 1u];
+      vec3 edge_next = rest_edge_local[b + v + 1u].xyz;
       vec4 a = P[v - 1u];
       vec4 p = P[v];
-      if (rest_info[b + v].z != 0.0) f = frame_align(f, p.xyz - a.xyz, rest_info[b + v - 1u].x);
+      if (info.z != 0.0) f = frame_align(f, p.xyz - a.xyz, info_in.x);
       vec4 n = P[v + 1u];
-      vec3 target = p.xyz + quat_rotate(f, rest_edge_local[b + v].xyz);
+      vec3 target = p.xyz + quat_rotate(f, edge);
       vec3 d = s * (target - n.xyz);
       if (p.w > 0.0) P[v] = vec4(p.xyz - d, p.w);
       if (n.w > 0.0) P[v + 1u] = vec4(n.xyz + d, n.w);
+      info_in = info;
+      info = info_next;
+      edge = edge_next;
     }
   }
   for (uint v = 1u; v < N; ++v) pos[b + v] = P[v];
