@@ -239,6 +239,26 @@ TEST_CASE("a groom 128x smaller or larger is simulated to the same relative prec
   check_scene(r);
 }
 
+TEST_CASE("hard settings match the reference too (30 Hz steps; no damping, shape, VSP or speed limit)",
+          "[plugin][simulation]") {
+  // The reference checks these corners for stability (test_simulator.cpp); here the GPU must follow it there.
+  const bool slow_steps = GENERATE(true, false);
+  const std::string groom = GENERATE("curly", "long128");
+  const asset::HairAsset hair = test::small_groom(groom, groom == "long128" ? 16 : 32);
+  std::vector<TvkSimParams> params = default_params(hair);
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  if (slow_steps) {
+    settings.time.step_rate = 30.0f;
+  } else {
+    for (TvkSimParams& p : params) {
+      p.damping = p.local_stiffness = p.global_stiffness = p.vsp_coefficient = p.max_speed = 0.0f;
+    }
+  }
+  const SceneResult r = run_scene(hair, "shake", 40, params, settings);
+  INFO(groom << (slow_steps ? " at 30 Hz" : " unconstrained") << ": step error " << r.step_error_max);
+  check_scene(r);
+}
+
 TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][simulation]") {
   // The TressFX defect where instances share one constant buffer must not exist: two instances of one asset with
   // different stiffness, recorded in one simulate call, each match their own reference.
