@@ -34,8 +34,11 @@ void destroy_instance_now(TvkInstance_T* inst, bool deferred) {
 
 TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
   const auto& rest = inst.asset->rest;
-  const VkDeviceSize guide_vertices = VkDeviceSize{rest.guide_count} * rest.vertices_per_strand;
-  const VkDeviceSize all_vertices = guide_vertices * (1 + rest.follow_per_guide);
+  // Whole strand blocks (the blocked vertex layout of gpu_layout.hpp).
+  static_assert(tressvk::sim::kStrandBlock == TVK_STRAND_BLOCK);
+  const VkDeviceSize guide_vertices = tressvk::sim::padded_strands(rest.guide_count) * rest.vertices_per_strand;
+  const VkDeviceSize all_vertices =
+      tressvk::sim::padded_strands(uint64_t{rest.guide_count} * (1 + rest.follow_per_guide)) * rest.vertices_per_strand;
   const VkBufferUsageFlags state_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   TvkResult r = TVK_SUCCESS;

@@ -33,7 +33,8 @@ Expanded expand_vertex(uint vertex_id) {
   const uint segment = vertex_id / 6u;
   const uint strand = segment / (n - 1u);
   const uint v = segment % (n - 1u) + kEnd[corner];
-  const uint index = strand * n + v;
+  // The simulation's blocked vertex layout (shaders/sim/layout.glsl, TVK_STRAND_BLOCK = 32 in tressvk.h).
+  const uint index = (strand / 32u) * (32u * n) + v * 32u + strand % 32u;
 
   Expanded e;
   e.position = anchors[strand % dc.counts.y].xyz + positions[index].xyz;

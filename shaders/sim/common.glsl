@@ -88,13 +88,15 @@ vec3 skin_apply(uint g, uint slot, vec3 x, float w) {
 }
 
 // The guide's anchor at the current substep: its skinned rest root, in simulation space.
-vec3 skin_anchor(uint g) { return skin_apply(g, 0u, rest_pos[g * N].xyz, 1.0); }
+vec3 skin_anchor(uint g) { return skin_apply(g, 0u, rest_pos[strand_base(g)].xyz, 1.0); }
 
 // How far the guide's anchor moved since the previous substep (in this substep's frame).
-vec3 anchor_move(uint g) { return skin_apply(g, 6u, rest_pos[g * N].xyz, 1.0); }
+vec3 anchor_move(uint g) { return skin_apply(g, 6u, rest_pos[strand_base(g)].xyz, 1.0); }
 
 // Skinned rest position of guide vertex v, relative to the guide's anchor (the root: exactly zero).
-vec3 skin_offset(uint g, uint v) { return v == 0u ? vec3(0.0) : skin_apply(g, 0u, rest_pos[g * N + v].xyz, 0.0); }
+vec3 skin_offset(uint g, uint v) {
+  return v == 0u ? vec3(0.0) : skin_apply(g, 0u, rest_pos[vertex_index(g, v)].xyz, 0.0);
+}
 
 // Rotation of the strand's skinning (weights blended on the quaternion hemisphere of the first bone).
 vec4 skin_rotation(uint g) {
@@ -139,9 +141,9 @@ vec4 skin_delta_before(uint g) { return blend_bone_delta(g, 5u); }
 // long enough (the same frame local shape starts from and follow hairs are turned by).
 vec4 current_root_frame(uint g) {
   vec4 f = quat_mul(skin_rotation(g), root_frame[g]);
-  uint b = g * N;
-  if (rest_info[b + 1u].z != 0.0) {
-    f = frame_align(f, pos[b + 1u].xyz - pos[b].xyz, rest_info[b].x);
+  uint b = strand_base(g);
+  if (rest_info[b + TVK_BLOCK].z != 0.0) {
+    f = frame_align(f, pos[b + TVK_BLOCK].xyz - pos[b].xyz, rest_info[b].x);
   }
   return f;
 }

@@ -8,16 +8,17 @@ layout(local_size_x_id = 0) in;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   uint G = pc.guide_count;
-  if (i >= G * K * N) return;
-  uint strand = i / N;             // 0 .. G*K-1 over the follow layers
-  uint v = i - strand * N;
+  uvec2 sv = element_strand_vertex(i);  // threads walk the follow strands 0 .. G*K-1 in the blocked order
+  uint strand = sv.x;
+  uint v = sv.y;
+  if (strand >= G * K) return;
   uint f = strand / G;
   uint g = strand - f * G;
   GroupParams gp = guide_params(g);
   vec3 offset = quat_rotate(current_root_frame(g), follow_offset[g * K + f].xyz);
   float spread = 1.0 + gp.tip_separation * float(v) / float(N - 1u);
-  uint src = g * N + v;
-  uint dst = G * N + i;
+  uint src = vertex_index(g, v);
+  uint dst = vertex_index(G + strand, v);
   pos[dst] = vec4(pos[src].xyz + spread * offset, pos[src].w);
   tangent[dst] = tangent[src];
 }

@@ -8,10 +8,11 @@
 layout(local_size_x_id = 0) in;
 
 void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.guide_count * N) return;
-  uint g = i / N;
-  uint v = i - g * N;
+  uint i = gl_GlobalInvocationID.x;  // element i of the per-vertex buffers
+  uvec2 sv = element_strand_vertex(i);
+  uint g = sv.x;
+  uint v = sv.y;
+  if (g >= pc.guide_count) return;
 
   float inv_mass = rest_pos[i].w;
   vec3 goal = skin_offset(g, v);

@@ -3,8 +3,11 @@
 // static_asserts on every size and offset written here).
 //
 // One descriptor set (set 0) per hair instance, storage buffers only. Sizes: G guides, K follows per guide,
-// N vertices per strand. Vertex v of guide g is at g*N+v; follow f of guide g is rendered strand (f+1)*G+g, so
-// its vertex v is at ((f+1)*G+g)*N+v (the asset's strand order: guides first, then follow layers).
+// N vertices per strand. Strands are numbered in the asset's order: guides 0..G-1, then follow f of guide g is
+// strand (f+1)*G+g. Per-vertex buffers hold strands in blocks of TVK_BLOCK, vertex-major within a block, so that
+// the threads of a subgroup walking their strands (local shape, length) read consecutive addresses: vertex v of
+// strand s is at strand_base(s) + v * TVK_BLOCK (see vertex_index). Buffers hold whole blocks; threads of the padding
+// strands return at once.
 //
 // Simulation space: world-oriented axes (gravity and wind are world vectors), origin at the instance translation
 // plus the rotated asset origin, which the host keeps in double precision. Within it every guide has an anchor, its
@@ -32,6 +35,17 @@ layout(constant_id = 4) const uint CAPSULE_COUNT = 0;     // 0..8, capsules test
 #define TVK_FEATURE_MAX_SPEED 16u    // length: velocity clamp
 
 #define TVK_HAS(bit) ((FEATURES & (bit)) != 0u)
+
+// ---- vertex layout (mirrored by kStrandBlock / vertex_index in gpu_layout.hpp and TVK_STRAND_BLOCK in tressvk.h) ---
+#define TVK_BLOCK 32u
+uint strand_base(uint s) { return (s / TVK_BLOCK) * (TVK_BLOCK * N) + s % TVK_BLOCK; }
+uint vertex_index(uint s, uint v) { return strand_base(s) + v * TVK_BLOCK; }
+// The strand and vertex of element i of a per-vertex buffer (for one-thread-per-vertex passes, thread i = element i).
+uvec2 element_strand_vertex(uint i) {
+  uint block = i / (TVK_BLOCK * N);
+  uint r = i - block * (TVK_BLOCK * N);
+  return uvec2(block * TVK_BLOCK + r % TVK_BLOCK, r / TVK_BLOCK);
+}
 
 // ---- per-instance dynamic state --------------------------------------------------------------------------
 layout(std430, set = 0, binding = 0) buffer Positions { vec4 pos[]; };        // G*(K+1)*N; w = inverse mass (0 = pinned)

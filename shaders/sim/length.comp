@@ -13,7 +13,7 @@ void main() {
   uint g = gl_GlobalInvocationID.x;
   if (g >= pc.guide_count) return;
   GroupParams gp = guide_params(g);
-  uint b = g * N;
+  uint b = strand_base(g);  // vertex v at b + v * TVK_BLOCK
 
   if (TVK_HAS(TVK_FEATURE_WIND)) {
     // Per strand a fixed blend of the wind pyramid; the segment arriving at v takes the component of the wind
@@ -22,16 +22,16 @@ void main() {
     vec3 w = a * (step_params[pc.step_index].wind[0].xyz + step_params[pc.step_index].wind[2].xyz) +
              (1.0 - a) * (step_params[pc.step_index].wind[1].xyz + step_params[pc.step_index].wind[3].xyz);
     for (uint v = 1u; v < N; ++v) {
-      vec4 p = pos[b + v];
+      vec4 p = pos[b + v * TVK_BLOCK];
       if (!(p.w > 0.0)) continue;
-      vec3 e = p.xyz - pos[b + v - 1u].xyz;
+      vec3 e = p.xyz - pos[b + (v - 1u) * TVK_BLOCK].xyz;
       float len = length(e);
       vec3 push = w;
-      if (len > kDirectionEps * rest_info[b + v - 1u].x) {
+      if (len > kDirectionEps * rest_info[b + (v - 1u) * TVK_BLOCK].x) {
         vec3 t = e / len;
         push = w - dot(w, t) * t;
       }
-      pos[b + v] = vec4(p.xyz + push, p.w);
+      pos[b + v * TVK_BLOCK] = vec4(p.xyz + push, p.w);
     }
   }
 
@@ -39,10 +39,10 @@ void main() {
     // Capsules are in simulation space; the strand is relative to its anchor.
     vec3 a = anchor[g].xyz;
     for (uint v = 0u; v < N; ++v) {
-      vec4 p = pos[b + v];
+      vec4 p = pos[b + v * TVK_BLOCK];
       if (!(p.w > 0.0)) continue;
       vec3 x = p.xyz;
-      vec3 y = prev[b + v].xyz;
+      vec3 y = prev[b + v * TVK_BLOCK].xyz;
       bool hit = false;
       for (uint c = 0u; c < CAPSULE_COUNT; ++c) {
         vec4 c0 = step_params[pc.step_index].capsule[2u * c];
@@ -78,8 +78,8 @@ void main() {
         hit = true;
       }
       if (hit) {
-        pos[b + v] = vec4(x, p.w);
-        prev[b + v] = vec4(y, p.w);
+        pos[b + v * TVK_BLOCK] = vec4(x, p.w);
+        prev[b + v * TVK_BLOCK] = vec4(y, p.w);
       }
     }
   }
@@ -93,17 +93,17 @@ void main() {
     vec3 pp = prev[b].xyz;
     // The next vertex is fetched one edge ahead (it is not written before its turn), so its memory latency overlaps
     // this edge's arithmetic.
-    vec4 n_next = pos[b + 1u];
-    vec3 pn_next = prev[b + 1u].xyz;
+    vec4 n_next = pos[b + TVK_BLOCK];
+    vec3 pn_next = prev[b + TVK_BLOCK].xyz;
     float rest_next = rest_info[b].x;
     for (uint v = 0u; v + 1u < N; ++v) {
       vec4 n = n_next;
       vec3 pn = pn_next;
       float rest = rest_next;
       if (v + 2u < N) {
-        n_next = pos[b + v + 2u];
-        pn_next = prev[b + v + 2u].xyz;
-        rest_next = rest_info[b + v + 1u].x;
+        n_next = pos[b + (v + 2u) * TVK_BLOCK];
+        pn_next = prev[b + (v + 2u) * TVK_BLOCK].xyz;
+        rest_next = rest_info[b + (v + 1u) * TVK_BLOCK].x;
       }
       float wb = n.w > 0.0 ? 1.0 : 0.0;
       // The last sweep moves only the tip-ward end (follow the leader), so every step ends with each segment
@@ -132,29 +132,29 @@ void main() {
           // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),
           // which keeps the strand's momentum plausible and removes FTL's energy gain.
           if (last_sweep && wa == 0.0 && wb > 0.0 && p.w > 0.0) {
-            prev[b + v] = vec4(pp - kFtlVelocityCorrection * corr, p.w);
+            prev[b + v * TVK_BLOCK] = vec4(pp - kFtlVelocityCorrection * corr, p.w);
           }
         }
       }
-      pos[b + v] = p;  // final for this sweep
+      pos[b + v * TVK_BLOCK] = p;  // final for this sweep
       p = n;
       pp = pn;
     }
-    pos[b + N - 1u] = p;
+    pos[b + (N - 1u) * TVK_BLOCK] = p;
   }
 
   if (TVK_HAS(TVK_FEATURE_MAX_SPEED) && gp.max_step > 0.0) {
     for (uint v = 0u; v < N; ++v) {
-      vec4 p = pos[b + v];
+      vec4 p = pos[b + v * TVK_BLOCK];
       if (!(p.w > 0.0)) continue;
-      vec3 step = p.xyz - prev[b + v].xyz;
+      vec3 step = p.xyz - prev[b + v * TVK_BLOCK].xyz;
       float len = length(step);
-      if (len > gp.max_step) prev[b + v] = vec4(p.xyz - step * (gp.max_step / len), p.w);
+      if (len > gp.max_step) prev[b + v * TVK_BLOCK] = vec4(p.xyz - step * (gp.max_step / len), p.w);
     }
   }
 
   bool ok = true;
-  for (uint v = 0u; v < N; ++v) ok = ok && finite3(pos[b + v].xyz) && finite3(prev[b + v].xyz);
+  for (uint v = 0u; v < N; ++v) ok = ok && finite3(pos[b + v * TVK_BLOCK].xyz) && finite3(prev[b + v * TVK_BLOCK].xyz);
   if (!ok) {
     // The history is the rest pose carried back by this step's rigid motion, so the strand moves on with the head
     // (VSP assumes that integration carries the head's previous motion); a non-finite root history falls back to
@@ -164,12 +164,12 @@ void main() {
     vec4 back = skin_delta(g);
     back = vec4(-back.xyz, back.w);
     for (uint v = 0u; v < N; ++v) {
-      float inv_mass = rest_pos[b + v].w;
+      float inv_mass = rest_pos[b + v * TVK_BLOCK].w;
       vec3 p = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
       vec4 y = vec4(q0 + quat_rotate(back, p), inv_mass);
-      pos[b + v] = vec4(p, inv_mass);
-      prev[b + v] = y;
-      prevprev[b + v] = y;
+      pos[b + v * TVK_BLOCK] = vec4(p, inv_mass);
+      prev[b + v * TVK_BLOCK] = y;
+      prevprev[b + v * TVK_BLOCK] = y;
     }
     atomicAdd(counters[pc.counter_index], 1u);
   }
@@ -179,9 +179,9 @@ void main() {
   float min_len = kDirectionEps * strand_rest_length(g) / float(N - 1u);
   vec3 last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
   for (uint v = 0u; v < N; ++v) {
-    vec3 e = v + 1u < N ? pos[b + v + 1u].xyz - pos[b + v].xyz : pos[b + v].xyz - pos[b + v - 1u].xyz;
+    vec3 e = v + 1u < N ? pos[b + (v + 1u) * TVK_BLOCK].xyz - pos[b + v * TVK_BLOCK].xyz : pos[b + v * TVK_BLOCK].xyz - pos[b + (v - 1u) * TVK_BLOCK].xyz;
     float len = length(e);
     if (len > min_len) last = e / len;
-    tangent[b + v] = vec4(last, 0.0);
+    tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
   }
 }

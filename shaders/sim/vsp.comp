@@ -8,20 +8,22 @@
 layout(local_size_x_id = 0) in;
 
 void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.guide_count * N) return;
-  uint g = i / N;
-  uint v = i - g * N;
+  uint i = gl_GlobalInvocationID.x;  // element i of the per-vertex buffers
+  uvec2 sv = element_strand_vertex(i);
+  uint g = sv.x;
+  uint v = sv.y;
+  if (g >= pc.guide_count) return;
   if (v < 2u) return;
   vec4 x = pos[i];
   if (!(x.w > 0.0)) return;
 
   GroupParams gp = guide_params(g);
   if (!(gp.vsp_coefficient > 0.0)) return;  // VSP off for this group (the pass runs for another group)
-  uint b = g * N;
-  vec3 p0 = pos[b].xyz, p1 = pos[b + 1u].xyz;
-  vec3 q0 = prev[b].xyz, q1 = prev[b + 1u].xyz;
-  vec3 r0 = prevprev[b].xyz, r1 = prevprev[b + 1u].xyz;
+  uint b = strand_base(g);
+  uint b1 = b + TVK_BLOCK;
+  vec3 p0 = pos[b].xyz, p1 = pos[b1].xyz;
+  vec3 q0 = prev[b].xyz, q1 = prev[b1].xyz;
+  vec3 r0 = prevprev[b].xyz, r1 = prevprev[b1].xyz;
 
   // Above the acceleration threshold the whole strand follows the root rigidly; the coefficient ramps up over
   // [0.75, 1] x threshold so that it is a continuous function of the state.

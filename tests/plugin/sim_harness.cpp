@@ -105,7 +105,9 @@ void GpuInstance::poke_position(size_t vertex, const sim::Vec4& value) {
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &before;
     vkCmdPipelineBarrier2(cmd, &dep);
-    vkCmdUpdateBuffer(cmd, b.positions, vertex * sizeof(sim::Vec4), sizeof(sim::Vec4), value.data());
+    const size_t element = sim::vertex_index(vertex / b.vertices_per_strand, vertex % b.vertices_per_strand,
+                                             b.vertices_per_strand);
+    vkCmdUpdateBuffer(cmd, b.positions, element * sizeof(sim::Vec4), sizeof(sim::Vec4), value.data());
     VkMemoryBarrier2 after{};
     after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
     after.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;

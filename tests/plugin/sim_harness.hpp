@@ -40,8 +40,8 @@ class GpuInstance {
   const GpuState& state() const { return state_; }
   std::vector<std::string> recorded_passes() const;
   TvkInstanceStats stats() const;
-  // Overwrites one position on the GPU (fault injection; the value is an offset from the strand's anchor), recorded
-  // with the barriers it needs.
+  // Overwrites one position on the GPU (fault injection; `vertex` is strand * N + v, the value an offset from the
+  // strand's anchor), recorded with the barriers it needs.
   void poke_position(size_t vertex, const sim::Vec4& value);
   // Copies positions, previous positions and tangents back (after a frame).
   void read_state();

@@ -135,18 +135,23 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
 
 GpuStatic build_gpu_static(const ModelRest& m) {
   GpuStatic s;
-  const size_t vcount = m.rest_pos.size();
-  s.rest_positions.resize(vcount);
-  s.rest_info.resize(vcount);
-  s.rest_edge_local.resize(vcount);
   const uint32_t n = m.vertices_per_strand;
-  for (size_t i = 0; i < vcount; ++i) {
-    // The root as it is; the other vertices as offsets from it, formed in double (see layout.glsl).
-    const size_t root = i / n * n;
-    s.rest_positions[i] = narrow(i == root ? m.rest_pos[i] : m.rest_pos[i] - m.rest_pos[root], m.inv_mass[i]);
-    s.rest_info[i] = {static_cast<float>(m.rest_length[i]), static_cast<float>(m.arc_fraction[i]),
-                      m.frame_turns[i] ? 1.0f : 0.0f, 0.0f};
-    s.rest_edge_local[i] = narrow(m.rest_edge_local[i], 0.0);
+  // The blocked vertex layout (gpu_layout.hpp); padding strands stay zero (pinned, never read).
+  const size_t vcount = sim::padded_strands(m.guide_count) * n;
+  s.rest_positions.assign(vcount, sim::Vec4{});
+  s.rest_info.assign(vcount, sim::Vec4{});
+  s.rest_edge_local.assign(vcount, sim::Vec4{});
+  for (uint32_t g = 0; g < m.guide_count; ++g) {
+    const size_t root = size_t{g} * n;
+    for (uint32_t v = 0; v < n; ++v) {
+      const size_t i = root + v;
+      const size_t o = sim::vertex_index(g, v, n);
+      // The root as it is; the other vertices as offsets from it, formed in double (see layout.glsl).
+      s.rest_positions[o] = narrow(v == 0 ? m.rest_pos[i] : m.rest_pos[i] - m.rest_pos[root], m.inv_mass[i]);
+      s.rest_info[o] = {static_cast<float>(m.rest_length[i]), static_cast<float>(m.arc_fraction[i]),
+                        m.frame_turns[i] ? 1.0f : 0.0f, 0.0f};
+      s.rest_edge_local[o] = narrow(m.rest_edge_local[i], 0.0);
+    }
   }
   for (uint32_t g = 0; g < m.guide_count; ++g) {
     const Quat& q = m.root_frame[g];

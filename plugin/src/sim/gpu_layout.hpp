@@ -14,13 +14,14 @@ namespace tressvk::sim {
 
 // ---- descriptor set 0 bindings (all storage buffers) ----
 enum Binding : uint32_t {
-  kBindingPositions = 0,        // vec4 x G*(K+1)*N, read-write (offsets from the strand's anchor)
-  kBindingPrevPositions = 1,    // vec4 x G*N, read-write
-  kBindingPrevPrevPositions = 2,// vec4 x G*N, read-write
-  kBindingTangents = 3,         // vec4 x G*(K+1)*N, written
-  kBindingRestPositions = 4,    // vec4 x G*N, static (v = 0: the root; v > 0: offset from the root)
-  kBindingRestInfo = 5,         // vec4 x G*N, static
-  kBindingRestEdgeLocal = 6,    // vec4 x G*N, static
+  // Per-vertex buffers use the blocked layout below; sizes are padded_strands(...) * N.
+  kBindingPositions = 0,        // vec4 x padded(G*(K+1))*N, read-write (offsets from the strand's anchor)
+  kBindingPrevPositions = 1,    // vec4 x padded(G)*N, read-write
+  kBindingPrevPrevPositions = 2,// vec4 x padded(G)*N, read-write
+  kBindingTangents = 3,         // vec4 x padded(G*(K+1))*N, written
+  kBindingRestPositions = 4,    // vec4 x padded(G)*N, static (v = 0: the root; v > 0: offset from the root)
+  kBindingRestInfo = 5,         // vec4 x padded(G)*N, static
+  kBindingRestEdgeLocal = 6,    // vec4 x padded(G)*N, static
   kBindingRootFrames = 7,       // vec4 x G, static
   kBindingFollowOffsets = 8,    // vec4 x G*K, static (a 16-byte dummy when K = 0)
   kBindingGuideInfo = 9,        // uvec4 x G, static
@@ -50,6 +51,17 @@ enum Feature : uint32_t {
   kFeatureSkinning = 8u,
   kFeatureMaxSpeed = 16u,
 };
+
+// Vertex layout of every per-vertex buffer (positions, tangents, the histories, the static rest data): strands in
+// blocks of kStrandBlock, vertex-major within a block, so that the threads of a subgroup walking their strands read
+// consecutive addresses. Vertex v of strand s is at strand_base(s, N) + v * kStrandBlock; buffers hold whole blocks.
+inline constexpr uint32_t kStrandBlock = 32;
+constexpr uint64_t padded_strands(uint64_t strands) {
+  return (strands + kStrandBlock - 1) / kStrandBlock * kStrandBlock;
+}
+constexpr uint64_t vertex_index(uint64_t strand, uint64_t v, uint64_t n) {
+  return strand / kStrandBlock * (uint64_t{kStrandBlock} * n) + v * kStrandBlock + strand % kStrandBlock;
+}
 
 inline constexpr uint32_t kStepReset = 1u;       // StepParams::flags[0] bits
 inline constexpr uint32_t kStepMoveState = 2u;

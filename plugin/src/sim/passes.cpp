@@ -96,10 +96,11 @@ uint32_t dispatch_groups(Granularity granularity, uint32_t guide_count, uint32_t
                          uint32_t follow_per_guide, uint32_t workgroup_size) {
   uint64_t threads = 0;
   switch (granularity) {
-    case Granularity::kGuideVertex: threads = uint64_t{guide_count} * vertices_per_strand; break;
+    // Per-vertex passes cover whole strand blocks (thread i = element i of the blocked layout).
+    case Granularity::kGuideVertex: threads = padded_strands(guide_count) * vertices_per_strand; break;
     case Granularity::kGuide: threads = guide_count; break;
     case Granularity::kFollowVertex:
-      threads = uint64_t{guide_count} * follow_per_guide * vertices_per_strand;
+      threads = padded_strands(uint64_t{guide_count} * follow_per_guide) * vertices_per_strand;
       break;
   }
   if (workgroup_size == 0) return 0;

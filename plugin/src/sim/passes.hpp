@@ -75,8 +75,8 @@ struct PassUse {
 // The passes an instance records for one substep/frame, in order (per-substep ones first, then per-frame).
 std::vector<PassUse> passes_for(const SceneTerms& terms);
 
-// Workgroups to dispatch for a pass: the thread count of its granularity rounded up (threads past the end
-// return at once; no padding strands exist).
+// Workgroups to dispatch for a pass: the thread count of its granularity rounded up (per-vertex passes cover whole
+// strand blocks; threads of padding strands and past the end return at once).
 uint32_t dispatch_groups(Granularity granularity, uint32_t guide_count, uint32_t vertices_per_strand,
                          uint32_t follow_per_guide, uint32_t workgroup_size);
 

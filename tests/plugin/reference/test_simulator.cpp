@@ -252,8 +252,18 @@ TEST_CASE("reference: GPU static data matches the model", "[reference][sim]") {
   auto a = groom("straight", 16, 2);
   ModelRest m = build_model_rest(a);
   GpuStatic s = build_gpu_static(m);
-  CHECK(s.rest_positions.size() == a.rest_positions.size());
-  CHECK(s.rest_info.size() == a.rest_positions.size());
+  // Blocked layout, padded to whole blocks of strands: 16 guides fill half a block.
+  CHECK(s.rest_positions.size() == tressvk::sim::padded_strands(16) * a.vertices_per_strand);
+  CHECK(s.rest_info.size() == s.rest_positions.size());
+  for (uint32_t g = 0; g < 16; ++g) {
+    const size_t b = g * a.vertices_per_strand;
+    for (uint32_t v = 0; v < a.vertices_per_strand; ++v) {
+      const auto& p = s.rest_positions[tressvk::sim::vertex_index(g, v, a.vertices_per_strand)];
+      const double expect_x = v == 0 ? m.rest_pos[b].x : m.rest_pos[b + v].x - m.rest_pos[b].x;
+      CHECK(p[0] == static_cast<float>(expect_x));
+      CHECK(p[3] == static_cast<float>(m.inv_mass[b + v]));
+    }
+  }
   CHECK(s.root_frames.size() == 16);
   CHECK(s.guide_info.size() == 16);
   CHECK(s.follow_offsets.size() == 32);

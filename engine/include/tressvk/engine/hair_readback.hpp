@@ -14,7 +14,8 @@
 namespace tressvk::engine {
 
 // Positions in simulation space (world axes, origin at TvkInstanceBuffers::origin): each strand's anchor plus the
-// vertex's offset from it, summed in double, so nothing is rounded beyond what the GPU holds.
+// vertex's offset from it, summed in double, so nothing is rounded beyond what the GPU holds. Strand by strand (vertex
+// v of strand s at s * N + v), unlike the GPU's blocked layout (tressvk.h, TvkInstanceBuffers).
 struct HairState {
   std::vector<std::array<double, 3>> positions;          // every rendered strand: guides, then follow layers
   std::vector<std::array<double, 3>> previous;           // guides
@@ -56,18 +57,28 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
   HairState s;
   s.anchors = read_buffer_as<Vec4>(device, copies[4], sizes[4] / sizeof(Vec4));
   const size_t n = b.vertices_per_strand, guides = b.guide_count;
-  const auto absolute = [&](const std::vector<Vec4>& offsets) {
-    std::vector<std::array<double, 3>> out(offsets.size());
-    for (size_t i = 0; i < offsets.size(); ++i) {
-      const Vec4& a = s.anchors[(i / n) % guides];
-      for (size_t c = 0; c < 3; ++c) out[i][c] = static_cast<double>(a[c]) + static_cast<double>(offsets[i][c]);
+  const auto absolute = [&](const std::vector<Vec4>& blocked, size_t strands) {
+    std::vector<std::array<double, 3>> out(strands * n);
+    for (size_t strand = 0; strand < strands; ++strand) {
+      const Vec4& a = s.anchors[strand % guides];
+      for (size_t v = 0; v < n; ++v) {
+        const Vec4& o = blocked[strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * n + v * TVK_STRAND_BLOCK +
+                                strand % TVK_STRAND_BLOCK];
+        for (size_t c = 0; c < 3; ++c) out[strand * n + v][c] = static_cast<double>(a[c]) + static_cast<double>(o[c]);
+      }
     }
     return out;
   };
-  s.positions = absolute(read_buffer_as<Vec4>(device, copies[0], sizes[0] / sizeof(Vec4)));
-  s.previous = absolute(read_buffer_as<Vec4>(device, copies[1], sizes[1] / sizeof(Vec4)));
-  s.previous_previous = absolute(read_buffer_as<Vec4>(device, copies[2], sizes[2] / sizeof(Vec4)));
-  s.tangents = read_buffer_as<Vec4>(device, copies[3], sizes[3] / sizeof(Vec4));
+  const size_t all = guides * (1 + b.follow_per_guide);
+  s.positions = absolute(read_buffer_as<Vec4>(device, copies[0], sizes[0] / sizeof(Vec4)), all);
+  s.previous = absolute(read_buffer_as<Vec4>(device, copies[1], sizes[1] / sizeof(Vec4)), guides);
+  s.previous_previous = absolute(read_buffer_as<Vec4>(device, copies[2], sizes[2] / sizeof(Vec4)), guides);
+  const std::vector<Vec4> tangents = read_buffer_as<Vec4>(device, copies[3], sizes[3] / sizeof(Vec4));
+  s.tangents.resize(all * n);
+  for (size_t strand = 0; strand < all; ++strand)
+    for (size_t v = 0; v < n; ++v)
+      s.tangents[strand * n + v] =
+          tangents[strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * n + v * TVK_STRAND_BLOCK + strand % TVK_STRAND_BLOCK];
   return s;
 }
 

@@ -72,6 +72,7 @@ ModelRest build_model_rest(const asset::HairAsset& asset);
 // The static buffers (bindings 4..11) exactly as the GPU reads them. Buffers that would be empty (no follows, no
 // bones) hold one zero element, since Vulkan buffers cannot be empty.
 struct GpuStatic {
+  // Per-vertex data in the blocked layout (sim::vertex_index), padded to whole strand blocks.
   std::vector<sim::Vec4> rest_positions;    // binding 4: a guide's root, then its vertices' offsets from the root
   std::vector<sim::Vec4> rest_info;         // binding 5
   std::vector<sim::Vec4> rest_edge_local;   // binding 6
