@@ -48,19 +48,19 @@ uvec2 element_strand_vertex(uint i) {
 }
 
 // ---- per-instance dynamic state --------------------------------------------------------------------------
-layout(std430, set = 0, binding = 0) buffer Positions { vec4 pos[]; };        // G*(K+1)*N; w = inverse mass (0 = pinned)
-layout(std430, set = 0, binding = 1) buffer PrevPositions { vec4 prev[]; };   // G*N, previous step
-layout(std430, set = 0, binding = 2) buffer PrevPrevPositions { vec4 prevprev[]; };  // G*N, two steps back (VSP)
-layout(std430, set = 0, binding = 3) buffer Tangents { vec4 tangent[]; };     // G*(K+1)*N; xyz unit, w = 0
+layout(std430, set = 0, binding = 0) buffer Positions { vec4 pos[]; };        // padded(G*(K+1))*N; w = inverse mass (0 = pinned)
+layout(std430, set = 0, binding = 1) buffer PrevPositions { vec4 prev[]; };   // padded(G)*N, previous step
+layout(std430, set = 0, binding = 2) buffer PrevPrevPositions { vec4 prevprev[]; };  // padded(G)*N, two steps back (VSP)
+layout(std430, set = 0, binding = 3) buffer Tangents { vec4 tangent[]; };     // padded(G*(K+1))*N; xyz unit, w = 0
 
 // ---- per-asset static data (shared by every instance of an asset; built by reference::build_gpu_static) ---
 // v = 0: the root in asset space (relative to the asset origin); v > 0: the offset from the root. w = inverse mass.
-layout(std430, set = 0, binding = 4) readonly buffer RestPositions { vec4 rest_pos[]; };  // G*N
+layout(std430, set = 0, binding = 4) readonly buffer RestPositions { vec4 rest_pos[]; };  // padded(G)*N
 // x: rest length of edge v->v+1 (0 for v = N-1); y: rest arc length of v from the root / strand rest length;
 // z: 1 when the local-shape frame turns onto the edge arriving at v, 0 when that edge is too short to have a
 //    reliable direction (the frame is carried over it); w: 0.
-layout(std430, set = 0, binding = 5) readonly buffer RestInfo { vec4 rest_info[]; };      // G*N
-layout(std430, set = 0, binding = 6) readonly buffer RestEdgeLocal { vec4 rest_edge_local[]; };  // G*N: edge leaving v in the model frame at v; w = 0
+layout(std430, set = 0, binding = 5) readonly buffer RestInfo { vec4 rest_info[]; };      // padded(G)*N
+layout(std430, set = 0, binding = 6) readonly buffer RestEdgeLocal { vec4 rest_edge_local[]; };  // padded(G)*N: edge leaving v in the model frame at v; w = 0
 layout(std430, set = 0, binding = 7) readonly buffer RootFrames { vec4 root_frame[]; };   // G: rest frame at the root, quaternion (x,y,z,w)
 layout(std430, set = 0, binding = 8) readonly buffer FollowOffsets { vec4 follow_offset[]; };  // G*K, in the root frame; w = 0
 // x: strand group; y: 0 (reserved flags); z: floatBitsToUint(strand rest length, m); w: 0.

@@ -21,9 +21,9 @@ namespace tressvk::sim {
 enum class PassId : uint32_t { kIntegrate, kVsp, kLocalShape, kLength, kFollow };
 
 enum class Granularity : uint32_t {
-  kGuideVertex,   // one thread per guide vertex: G*N threads
+  kGuideVertex,   // one thread per guide vertex: padded(G)*N threads, thread i = element i of the blocked layout
   kGuide,         // one thread per guide: G threads (a serial walk along the strand)
-  kFollowVertex,  // one thread per follow vertex: G*K*N threads
+  kFollowVertex,  // one thread per follow vertex: padded(G*K)*N threads, in the blocked order of the follows
 };
 
 enum class Frequency : uint32_t {
