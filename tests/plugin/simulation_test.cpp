@@ -27,10 +27,16 @@ namespace {
 constexpr double kStepErrorBound = 1e-5;
 // Default settings must keep every segment within 5% of its rest length in every scene.
 constexpr double kStretchBound = 0.05;
+// Tangents (unit vectors, what the renderer shades with) against the reference's. A tangent moves by the difference
+// of its edge's end positions over the edge length, so the position bar allows more on finely resolved strands
+// (1e-5 of a 0.5 m long128 strand over its 4 mm edges: 2.5e-3); 1e-3 is 0.06 degrees. Measured at most 6.6e-4
+// (long128 in `run`, where a capsule contact moves a vertex), 1.9e-5 on the Ratboy mohawk.
+constexpr double kTangentBound = 1e-3;
 
 struct SceneResult {
   double step_error_max = 0;
   double shape_error_max = 0;  // the same, for each vertex's offset from its strand's root (the strand's shape)
+  double tangent_error_max = 0;  // largest |tangent difference| (unit vectors) over every rendered vertex
   double stretch_max = 0;
   uint32_t nan_strands = 0;
   uint32_t exploded_strands = 0;
@@ -69,6 +75,11 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
         const reference::Vec3 ref_shape = ref.positions()[i] - ref.positions()[root];
         result.shape_error_max = std::max(result.shape_error_max, reference::length(gpu_shape - ref_shape) / median);
       }
+      for (size_t i = 0; i < ref.tangents().size() && i < gpu.state().tangent.size(); ++i) {
+        const sim::Vec4& t = gpu.state().tangent[i];
+        result.tangent_error_max = std::max(
+            result.tangent_error_max, reference::length(reference::Vec3{t[0], t[1], t[2]} - ref.tangents()[i]));
+      }
       const auto st = reference::stretch(std::span<const test::Point>(gpu.state().pos), ref.rest());
       result.stretch_max = std::max(result.stretch_max, st.max);
       const auto health = reference::health(std::span<const test::Point>(gpu.state().pos), ref.rest());
@@ -90,6 +101,7 @@ void check_scene(const SceneResult& r) {
   CHECK(r.nan_strands == 0);
   CHECK(r.exploded_strands == 0);
   CHECK(r.stretch_max <= kStretchBound);
+  CHECK(r.tangent_error_max <= kTangentBound);
 }
 
 }  // namespace
@@ -100,7 +112,8 @@ TEST_CASE("GPU matches the reference in every scene with every built-in groom", 
   // Small grooms keep lavapipe fast; 75 frames include a teleport (frame 60) and many hitches.
   const asset::HairAsset hair = test::small_groom(groom, groom == "long128" ? 16 : 32, groom == "straight" ? 1 : 0);
   const SceneResult r = run_scene(hair, scene, 75);
-  INFO(groom << " / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max);
+  INFO(groom << " / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max
+              << ", tangent error " << r.tangent_error_max);
   check_scene(r);
 }
 
@@ -113,7 +126,8 @@ TEST_CASE("GPU matches the reference on the baked Ratboy mohawk with 2 follow ha
   const asset::HairAsset hair = baker::bake(raw, options);
   const std::string scene = GENERATE("settle", "shake", "run", "teleport", "wind", "hitch", "far");
   const SceneResult r = run_scene(hair, scene, scene == "teleport" ? 65 : 40);
-  INFO("Ratboy / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max);
+  INFO("Ratboy / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max
+                   << ", tangent error " << r.tangent_error_max);
   check_scene(r);
 }
 
