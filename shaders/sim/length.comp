@@ -21,17 +21,21 @@ void main() {
     float a = float(g % 20u) / 20.0;
     vec3 w = a * (step_params[pc.step_index].wind[0].xyz + step_params[pc.step_index].wind[2].xyz) +
              (1.0 - a) * (step_params[pc.step_index].wind[1].xyz + step_params[pc.step_index].wind[3].xyz);
+    vec3 before = pos[b].xyz;  // vertex v - 1 as pushed, carried (reloading it would wait on its own store)
     for (uint v = 1u; v < N; ++v) {
       vec4 p = pos[b + v * TVK_BLOCK];
-      if (!(p.w > 0.0)) continue;
-      vec3 e = p.xyz - pos[b + (v - 1u) * TVK_BLOCK].xyz;
-      float len = length(e);
-      vec3 push = w;
-      if (len > kDirectionEps * rest_info[b + (v - 1u) * TVK_BLOCK].x) {
-        vec3 t = e / len;
-        push = w - dot(w, t) * t;
+      if (p.w > 0.0) {
+        vec3 e = p.xyz - before;
+        float len = length(e);
+        vec3 push = w;
+        if (len > kDirectionEps * rest_info[b + (v - 1u) * TVK_BLOCK].x) {
+          vec3 t = e / len;
+          push = w - dot(w, t) * t;
+        }
+        p = vec4(p.xyz + push, p.w);
+        pos[b + v * TVK_BLOCK] = p;
       }
-      pos[b + v * TVK_BLOCK] = vec4(p.xyz + push, p.w);
+      before = p.xyz;
     }
   }
 
@@ -143,18 +147,35 @@ void main() {
     pos[b + (N - 1u) * TVK_BLOCK] = p;
   }
 
-  if (TVK_HAS(TVK_FEATURE_MAX_SPEED) && gp.max_step > 0.0) {
-    for (uint v = 0u; v < N; ++v) {
-      vec4 p = pos[b + v * TVK_BLOCK];
-      if (!(p.w > 0.0)) continue;
-      vec3 step = p.xyz - prev[b + v * TVK_BLOCK].xyz;
+  // One walk for the velocity clamp, the non-finite check and the tangents (along the edge leaving v, arriving for
+  // the tip; an edge too short to have a direction reuses the previous tangent, and the root falls back to the
+  // current root frame's +X). A strand found non-finite is reset below and its tangents written again.
+  bool clamp = TVK_HAS(TVK_FEATURE_MAX_SPEED) && gp.max_step > 0.0;
+  float min_len = kDirectionEps * strand_rest_length(g) / float(N - 1u);
+  vec3 last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
+  bool ok = true;
+  vec4 p = pos[b];
+  vec4 before = p;
+  for (uint v = 0u; v < N; ++v) {
+    vec4 next = v + 1u < N ? pos[b + (v + 1u) * TVK_BLOCK] : p;
+    vec3 q = prev[b + v * TVK_BLOCK].xyz;
+    if (clamp && p.w > 0.0) {
+      vec3 step = p.xyz - q;
       float len = length(step);
-      if (len > gp.max_step) prev[b + v * TVK_BLOCK] = vec4(p.xyz - step * (gp.max_step / len), p.w);
+      if (len > gp.max_step) {
+        q = p.xyz - step * (gp.max_step / len);
+        prev[b + v * TVK_BLOCK] = vec4(q, p.w);
+      }
     }
+    ok = ok && finite3(p.xyz) && finite3(q);
+    vec3 e = v + 1u < N ? next.xyz - p.xyz : p.xyz - before.xyz;
+    float len = length(e);
+    if (len > min_len) last = e / len;
+    tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
+    before = p;
+    p = next;
   }
 
-  bool ok = true;
-  for (uint v = 0u; v < N; ++v) ok = ok && finite3(pos[b + v * TVK_BLOCK].xyz) && finite3(prev[b + v * TVK_BLOCK].xyz);
   if (!ok) {
     // The history is the rest pose carried back by this step's rigid motion, so the strand moves on with the head
     // (VSP assumes that integration carries the head's previous motion); a non-finite root history falls back to
@@ -165,23 +186,20 @@ void main() {
     back = vec4(-back.xyz, back.w);
     for (uint v = 0u; v < N; ++v) {
       float inv_mass = rest_pos[b + v * TVK_BLOCK].w;
-      vec3 p = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
-      vec4 y = vec4(q0 + quat_rotate(back, p), inv_mass);
-      pos[b + v * TVK_BLOCK] = vec4(p, inv_mass);
+      vec3 r = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
+      vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
+      pos[b + v * TVK_BLOCK] = vec4(r, inv_mass);
       prev[b + v * TVK_BLOCK] = y;
       prevprev[b + v * TVK_BLOCK] = y;
     }
     atomicAdd(counters[pc.counter_index], 1u);
-  }
-
-  // Tangents: along the edge leaving v (arriving, for the tip); an edge too short to have a direction reuses
-  // the previous tangent, and the root falls back to the current root frame's +X.
-  float min_len = kDirectionEps * strand_rest_length(g) / float(N - 1u);
-  vec3 last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
-  for (uint v = 0u; v < N; ++v) {
-    vec3 e = v + 1u < N ? pos[b + (v + 1u) * TVK_BLOCK].xyz - pos[b + v * TVK_BLOCK].xyz : pos[b + v * TVK_BLOCK].xyz - pos[b + (v - 1u) * TVK_BLOCK].xyz;
-    float len = length(e);
-    if (len > min_len) last = e / len;
-    tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
+    last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
+    for (uint v = 0u; v < N; ++v) {
+      vec3 e = v + 1u < N ? pos[b + (v + 1u) * TVK_BLOCK].xyz - pos[b + v * TVK_BLOCK].xyz
+                          : pos[b + v * TVK_BLOCK].xyz - pos[b + (v - 1u) * TVK_BLOCK].xyz;
+      float len = length(e);
+      if (len > min_len) last = e / len;
+      tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
+    }
   }
 }
