@@ -3,7 +3,10 @@
 # one JSON file per configuration plus a summary table into OUTDIR.
 #
 #   scripts/gpu-bench.sh OUTDIR [BINDIR]
+#   WARM=1 scripts/gpu-bench.sh OUTDIR [BINDIR]   # the H200 table of docs/simulation.md, as Markdown rows
 #
+# WARM=1 times 300 frames after 60 warm-up frames with the step error every 30th frame and no free-running
+# reference, so the GPU stays busy and at full clock between frames. MOHAWK=FILE adds the baked Ratboy mohawk.
 # BINDIR holds tressvk-bench and libtressvk.so.0 (default build/portable/engine and build/portable/plugin).
 # On a machine without a Vulkan loader, install the loader first (scripts/gpu-bench.sh does not), e.g. by
 # unpacking Debian's libvulkan1 and the glvnd libraries, and point VK_DRIVER_FILES at the driver's ICD JSON.
@@ -20,6 +23,21 @@ else
 fi
 BENCH="$BIN/tressvk-bench"
 FRAMES=${FRAMES:-120}
+
+if [ "${WARM:-0}" = 1 ]; then
+  W="--frames 300 --warmup 60 --step-error-every 30 --no-trajectory --table-row"
+  {
+    for scene in settle shake run hitch; do "$BENCH" compare --builtin curly --guides 4096 --scene "$scene" $W; done
+    "$BENCH" compare --builtin straight --guides 4096 --scene shake $W
+    "$BENCH" compare --builtin long128 --guides 1024 --scene shake $W
+    if [ -f "${MOHAWK:-}" ]; then
+      for scene in settle shake run; do "$BENCH" compare --asset "$MOHAWK" --scene "$scene" $W; done
+    fi
+    for g in 1024 16384 65536; do "$BENCH" compare --builtin curly --guides "$g" --scene shake $W; done
+    for rate in 120 480; do "$BENCH" compare --builtin curly --guides 4096 --scene shake --step-rate "$rate" $W; done
+  } | tee "$OUT/warm-table.md"
+  exit 0
+fi
 
 run() {  # name, then bench arguments
   local name=$1; shift
