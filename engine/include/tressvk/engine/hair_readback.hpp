@@ -57,13 +57,16 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
   HairState s;
   s.anchors = read_buffer_as<Vec4>(device, copies[4], sizes[4] / sizeof(Vec4));
   const size_t n = b.vertices_per_strand, guides = b.guide_count;
+  // Element of vertex v of strand s in the GPU's blocked layout (tressvk.h, TvkInstanceBuffers).
+  const auto element = [n](size_t strand, size_t v) {
+    return strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * n + v * TVK_STRAND_BLOCK + strand % TVK_STRAND_BLOCK;
+  };
   const auto absolute = [&](const std::vector<Vec4>& blocked, size_t strands) {
     std::vector<std::array<double, 3>> out(strands * n);
     for (size_t strand = 0; strand < strands; ++strand) {
       const Vec4& a = s.anchors[strand % guides];
       for (size_t v = 0; v < n; ++v) {
-        const Vec4& o = blocked[strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * n + v * TVK_STRAND_BLOCK +
-                                strand % TVK_STRAND_BLOCK];
+        const Vec4& o = blocked[element(strand, v)];
         for (size_t c = 0; c < 3; ++c) out[strand * n + v][c] = static_cast<double>(a[c]) + static_cast<double>(o[c]);
       }
     }
@@ -77,8 +80,7 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
   s.tangents.resize(all * n);
   for (size_t strand = 0; strand < all; ++strand)
     for (size_t v = 0; v < n; ++v)
-      s.tangents[strand * n + v] =
-          tangents[strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * n + v * TVK_STRAND_BLOCK + strand % TVK_STRAND_BLOCK];
+      s.tangents[strand * n + v] = tangents[element(strand, v)];
   return s;
 }
 
