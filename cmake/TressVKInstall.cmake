@@ -14,8 +14,9 @@ install(TARGETS ${_tressvk_export_targets}
   EXPORT TressVKTargets
   RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}"
   LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}"
-  ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
-  INCLUDES DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+  ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
+# The include directory reaches consumers once, through tressvk_plugin's INSTALL_INTERFACE (plugin/CMakeLists.txt);
+# an INCLUDES DESTINATION here would list it a second time in the exported targets.
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/plugin/include/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
 foreach(tool tressvk-demo tressvk-bench)
   if(TARGET ${tool})

@@ -38,6 +38,17 @@ if(NOT plugin_library)
   message(FATAL_ERROR "install test: libtressvk.so is missing from ${prefix}/lib")
 endif()
 
+# The installed targets name the include directory once (it used to appear twice: INCLUDES DESTINATION and the
+# target's INSTALL_INTERFACE).
+file(READ "${prefix}/lib/cmake/TressVK/TressVKTargets.cmake" targets_text)
+string(REGEX MATCH "INTERFACE_INCLUDE_DIRECTORIES \"([^\"]*)\"" _ "${targets_text}")
+set(include_dirs "${CMAKE_MATCH_1}")
+list(LENGTH include_dirs include_dir_count)
+if(NOT include_dir_count EQUAL 1)
+  message(FATAL_ERROR "install test: tressvk::plugin's include directories should be one, are: ${include_dirs}")
+endif()
+message(STATUS "install test: include directories of tressvk::plugin: ${include_dirs}")
+
 set(compiler_args)
 if(C_COMPILER)
   list(APPEND compiler_args "-DCMAKE_C_COMPILER=${C_COMPILER}")
@@ -48,6 +59,16 @@ endif()
 # Only the installed prefix: the consumer must not see the source or build tree.
 step("configure consumer" "${CMAKE_COMMAND}" -S "${CONSUMER_SOURCE_DIR}" -B "${consumer_build}" -G "${GENERATOR}"
      "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release ${compiler_args})
+# tressvk_bake_hair(... OPTIONS --bones FILE): the bones file is an input of the bake rule.
+file(READ "${consumer_build}/build.ninja" ninja_text)
+string(REGEX MATCH "build [^\n]*never_built\\.tvkhair[^\n]*: CUSTOM_COMMAND[^\n]*" bake_rule "${ninja_text}")
+if(NOT bake_rule)
+  message(FATAL_ERROR "install test: no bake rule for never_built.tvkhair in ${consumer_build}/build.ninja")
+endif()
+if(NOT bake_rule MATCHES "hair/skeleton\\.tfxbone")
+  message(FATAL_ERROR "install test: the --bones file is not an input of the bake rule:\n${bake_rule}")
+endif()
+message(STATUS "install test: --bones file tracked by the bake rule")
 step("build consumer" "${CMAKE_COMMAND}" --build "${consumer_build}")
 foreach(exe tressvk_consumer_c tressvk_consumer_cpp)
   step("run ${exe}" "${consumer_build}/${exe}")
