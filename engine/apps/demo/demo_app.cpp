@@ -28,8 +28,17 @@ constexpr engine::ResourceState kColorAfterReadback{VK_PIPELINE_STAGE_2_COPY_BIT
 constexpr engine::ResourceState kDepthAfterFrame{VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                                                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                                                  VK_IMAGE_LAYOUT_UNDEFINED};
-constexpr engine::ResourceState kShadowAfterFrame{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
-                                                  VK_IMAGE_LAYOUT_UNDEFINED};
+constexpr engine::ResourceState kShadowAfterFrame{
+    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE,
+    VK_IMAGE_LAYOUT_UNDEFINED};
+// The shadow map while the main pass's fragment shaders and the compute rasterizer's vertex shading sample it.
+constexpr engine::ResourceState kShadowSampled{
+    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+// The opaque depth while the compute rasterizer reads it (render.h, tressvk_cmd_raster_hair).
+constexpr engine::ResourceState kDepthForRaster{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                                                VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
 
 void to_array(const glm::dmat4& m, double (&out)[16]) { std::memcpy(out, glm::value_ptr(m), sizeof(out)); }
 
@@ -49,7 +58,10 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
       scene_(build_scene(options)),
       target_(engine::create_offscreen_target(device, options.width, options.height, kColorFormat, kDepthFormat)),
       plugin_(device, kFramesInFlight, /*timestamps=*/false) {
-  if (flavour_ == PassFlavour::render_pass) render_pass_ = engine::RenderPassTarget(device, target_);
+  if (flavour_ == PassFlavour::render_pass) {
+    render_pass_ = engine::RenderPassTarget(device, target_);
+    render_pass_load_ = engine::RenderPassTarget(device, target_, /*load=*/true);
+  }
   scene_renderer_ = std::make_unique<SceneRenderer>(device, kColorFormat, kDepthFormat, kShadowMapSize,
                                                     kFramesInFlight, scene_.head, scene_.floor,
                                                     render_pass_.render_pass());
@@ -192,7 +204,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   engine::cmd_end_rendering(cmd);
   frame.timestamps->cmd_write(cmd, 2, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
   engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, engine::state::kDepthAttachment,
-                            engine::state::kFragmentSampled);
+                            kShadowSampled);
 
   // Main pass: meshes first (opaque), then the hair over them.
   engine::ClearValues clear;
@@ -228,9 +240,38 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   di.ambient[1] = sf.ambient.y;
   di.ambient[2] = sf.ambient.z;
   di.shadow = options_.shadows ? &shadow_map : nullptr;
-  check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
+  const bool pass_flavour = flavour_ == PassFlavour::render_pass;
+  if (options_.hair_path == HairPath::raster) {
+    check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
+  } else {
+    // The opaque depth is final: end the pass, let the compute rasterizer read the depth, and composite the hair
+    // layer in a second pass that keeps the colour.
+    if (pass_flavour)
+      engine::cmd_end_render_pass(cmd);
+    else
+      engine::cmd_end_rendering(cmd);
+    const engine::ResourceState depth_written =
+        pass_flavour ? engine::state::kDepthStencilAttachment : engine::state::kDepthAttachment;
+    engine::cmd_image_barrier(cmd, target_.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, depth_written, kDepthForRaster);
+    TvkRasterInfo ri{};
+    ri.struct_size = sizeof(ri);
+    ri.draw = &di;
+    ri.depth_view = target_.depth.view();
+    ri.depth_layout = kDepthForRaster.layout;
+    ri.flags = options_.raster_flags;
+    check_tvk(tressvk_cmd_raster_hair(hair_->renderer(), cmd, &ri), ctx, "tressvk_cmd_raster_hair");
+    if (pass_flavour) {
+      engine::cmd_image_barrier(cmd, target_.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, kDepthForRaster,
+                                engine::state::kDepthStencilAttachment);
+      engine::cmd_begin_render_pass(cmd, render_pass_load_, clear);
+    } else {
+      engine::cmd_begin_rendering(cmd, target_, clear, engine::state::kColorAttachment, kDepthForRaster,
+                                  /*load=*/true);
+    }
+    check_tvk(tressvk_cmd_composite_hair(hair_->renderer(), cmd), ctx, "tressvk_cmd_composite_hair");
+  }
   strands_[frame.slot] = tressvk_get_last_drawn_strands(hair_->renderer());
-  if (flavour_ == PassFlavour::render_pass)
+  if (pass_flavour)
     engine::cmd_end_render_pass(cmd);
   else
     engine::cmd_end_rendering(cmd);

@@ -1,6 +1,8 @@
 // The demo's frame, the way a studio engine integrates TressVK:
 //   simulate (outside passes) -> shadow pass [meshes + tressvk_cmd_draw_shadow] -> barrier (shadow map to
 //   sampled) -> main pass [meshes + tressvk_cmd_draw_hair] -> readback.
+// With the compute path (default) the main pass is split where the opaque depth is final:
+//   main pass [meshes] -> tressvk_cmd_raster_hair (compute, reads depth) -> pass [tressvk_cmd_composite_hair].
 // Frames run in flight (engine::FrameLoop): the GPU renders frame n+1 while the CPU writes the PNG of frame n.
 // GPU timestamps separate simulation, shadow and shading time. Used by tressvk-demo and the golden-image tests.
 #pragma once
@@ -45,6 +47,7 @@ class DemoApp {
   const Scene& scene() const { return scene_; }
   TvkContext plugin() const { return plugin_.get(); }
   const TvkAssetInfo& asset_info() const { return hair_->info(); }
+  TvkRenderer renderer() const { return hair_->renderer(); }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -55,6 +58,7 @@ class DemoApp {
   Scene scene_;
   engine::OffscreenTarget target_;
   engine::RenderPassTarget render_pass_;
+  engine::RenderPassTarget render_pass_load_;  // compute path, VkRenderPass flavour: the composite pass
   PluginContext plugin_;
   std::unique_ptr<SceneRenderer> scene_renderer_;
   std::unique_ptr<HairHost> hair_;

@@ -1,0 +1,181 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Compute rasterizer, pass 5: one workgroup per 8 x 8 tile, one thread per pixel. The tile's segments are
+// composited front to back in depth order:
+// - a tile with at most kCap segments sorts them all in shared memory (bitonic sort on the depth key);
+// - a fuller tile is cut into depth slices: a histogram of its keys over kBins bins between its nearest and
+//   farthest key, then consecutive bins grouped into slices of at most kCap segments, each loaded, sorted and
+//   composited in turn (a single bin fuller than kCap keeps its kCap nearest-loaded entries and counts the rest
+//   in counters[3]);
+// - every pixel evaluates each segment's analytic coverage (the pixel centre's distance to the segment against
+//   its interpolated width), tests the fragment's interpolated depth against the host depth (LESS_OR_EQUAL), and
+//   blends premultiplied colour "under" what it has; a pixel stops at alpha >= 1 - 0.5/255, the tile (and the
+//   remaining slices) when all its pixels have.
+// Each pixel point belongs to the segment its centre projects onto (t in [0, 1); the strand's last segment
+// includes its tip), so consecutive segments of a strand never both cover it along the strand.
+layout(local_size_x = 8, local_size_y = 8) in;
+#include "render/compute/raster_layout.glsl"
+
+const uint kCap = 1024u;
+const uint kBins = 256u;
+const float kOpaque = 1.0 - 0.5 / 255.0;
+
+shared uint s_key[kCap];
+shared uint s_seg[kCap];
+shared uint s_hist[kBins];
+shared uint s_count, s_done, s_kmin, s_kmax, s_b1, s_frags, s_hair;
+
+uint bin_of(uint key, uint kmin, uint kmax) {
+  return min(uint(float(key - kmin) / float(kmax - kmin + 1u) * float(kBins)), kBins - 1u);
+}
+
+void main() {
+  const uint tiles_count = pc.size.z * pc.size.w;
+  const uint tile = gl_WorkGroupID.y * pc.size.z + gl_WorkGroupID.x;
+  const uint lid = gl_LocalInvocationIndex;
+  const uvec2 p = gl_GlobalInvocationID.xy;
+  const bool inside = p.x < pc.size.x && p.y < pc.size.y;
+  const uint pixel = p.y * pc.size.x + p.x;
+  const float zhost = inside ? texelFetch(host_depth, ivec2(p), 0).r : 0.0;
+  if (inside && (pc.params.z & kFlagCapture) != 0u) capture_depth[pixel] = zhost;
+
+  const uint first = tiles[tiles_count + tile];
+  const uint count = first >= pc.params.x ? 0u : min(tiles[tile], pc.params.x - first);
+  if (count == 0u) {  // uniform over the workgroup
+    if (inside) image[pixel] = uvec2(0u);
+    return;
+  }
+  const uint n = dc.counts.x;
+  const vec2 centre = vec2(p) + 0.5;
+  vec3 color = vec3(0.0);
+  float alpha = 0.0;
+  uint frags = 0u;
+  bool done = !inside;
+
+  if (lid == 0u) {
+    s_done = 0u;
+    s_kmin = 0xffffffffu;
+    s_kmax = 0u;
+    s_frags = 0u;
+    s_hair = 0u;
+  }
+  for (uint b = lid; b < kBins; b += 64u) s_hist[b] = 0u;
+  barrier();
+  if (done) atomicAdd(s_done, 1u);
+  const bool sliced = count > kCap;
+  uint kmin = 0u, kmax = 0u;
+  if (sliced) {
+    for (uint e = lid; e < count; e += 64u) {
+      const uint key = entries[first + e].x;
+      atomicMin(s_kmin, key);
+      atomicMax(s_kmax, key);
+    }
+    barrier();
+    kmin = s_kmin;
+    kmax = s_kmax;
+    for (uint e = lid; e < count; e += 64u) atomicAdd(s_hist[bin_of(entries[first + e].x, kmin, kmax)], 1u);
+    if (lid == 0u) atomicAdd(counters[6], 1u);
+  }
+  barrier();
+
+  uint b0 = 0u;
+  while (b0 < kBins) {
+    // The next slice: bins [b0, b1) with at most kCap entries (at least one bin).
+    if (lid == 0u) {
+      uint b = b0, acc = 0u;
+      if (!sliced) {
+        b = kBins;
+      } else {
+        while (b < kBins && (acc == 0u || acc + s_hist[b] <= kCap)) acc += s_hist[b++];
+      }
+      s_b1 = b;
+      s_count = 0u;
+    }
+    barrier();
+    const uint b1 = s_b1;
+    for (uint e = lid; e < count; e += 64u) {
+      const uvec2 entry = entries[first + e];
+      bool take = true;
+      if (sliced) {
+        const uint bin = bin_of(entry.x, kmin, kmax);
+        take = bin >= b0 && bin < b1;
+      }
+      if (take) {
+        const uint at = atomicAdd(s_count, 1u);
+        if (at < kCap) {
+          s_key[at] = entry.x;
+          s_seg[at] = entry.y;
+        }
+      }
+    }
+    barrier();
+    const uint loaded = s_count;
+    const uint m = min(loaded, kCap);
+    if (lid == 0u && loaded > kCap) atomicAdd(counters[3], loaded - kCap);
+    uint size = 1u;
+    while (size < m) size <<= 1u;
+    for (uint e = m + lid; e < size; e += 64u) s_key[e] = 0xffffffffu;
+    barrier();
+    // Bitonic sort of [0, size) by key, ascending (nearest first).
+    for (uint k = 2u; k <= size; k <<= 1u) {
+      for (uint j = k >> 1u; j > 0u; j >>= 1u) {
+        for (uint i = lid; i < size; i += 64u) {
+          const uint l = i ^ j;
+          if (l > i) {
+            const uint ki = s_key[i], kl = s_key[l];
+            if ((ki > kl) == ((i & k) == 0u)) {
+              s_key[i] = kl;
+              s_key[l] = ki;
+              const uint si = s_seg[i];
+              s_seg[i] = s_seg[l];
+              s_seg[l] = si;
+            }
+          }
+        }
+        barrier();
+      }
+    }
+    // Front-to-back compositing of the slice.
+    for (uint e = 0u; e < m; ++e) {
+      if ((e & 31u) == 0u) {
+        barrier();
+        const bool stop = s_done == 64u;
+        barrier();
+        if (stop) break;
+      }
+      if (done) continue;
+      const uint seg = s_seg[e];
+      const uint i = seg % (n - 1u);
+      const uint va = seg / (n - 1u) * n + i;
+      const vec4 a = verts[2u * va], ca = verts[2u * va + 1u];
+      const vec4 b = verts[2u * va + 2u], cb = verts[2u * va + 3u];
+      const vec2 d = b.xy - a.xy;
+      const float t = dot(centre - a.xy, d) / dot(d, d);
+      if (t < 0.0 || t > 1.0 || (t == 1.0 && i + 2u < n)) continue;
+      const float cov = coverage(length(centre - (a.xy + t * d)), mix(a.w, b.w, t));
+      if (cov <= 0.0) continue;
+      if (mix(a.z, b.z, t) > zhost) continue;  // behind the host's opaque surface
+      const float fa = cov * mix(ca.a, cb.a, t);
+      color += (1.0 - alpha) * fa * mix(ca.rgb, cb.rgb, t);
+      alpha += (1.0 - alpha) * fa;
+      ++frags;
+      if (alpha >= kOpaque) {
+        done = true;
+        atomicAdd(s_done, 1u);
+      }
+    }
+    barrier();
+    const bool stop = s_done == 64u;
+    barrier();
+    if (stop) break;
+    b0 = b1;
+  }
+  if (inside) image[pixel] = uvec2(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, alpha)));
+  atomicAdd(s_frags, frags);
+  if (alpha > 0.0) atomicAdd(s_hair, 1u);
+  barrier();
+  if (lid == 0u) {
+    atomicAdd(counters[4], s_frags);
+    atomicAdd(counters[5], s_hair);
+  }
+}
