@@ -18,7 +18,9 @@ namespace {
 
 constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;  // shaders write linear colour; PNG gets sRGB
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr uint32_t kTimestamps = 4;  // begin, after simulation, after shadow, after shading
+// begin, after simulation, after shadow, after shading; then around the hair's shadow call (4, 5) and from the
+// start of the hair's shading calls to the end of shading (6 -> 3).
+constexpr uint32_t kTimestamps = 7;
 
 // Where the previous frame left the shared targets. Old contents are discarded (layout UNDEFINED, every frame
 // clears), but the execution dependency on the previous frame's last use stays: its readback copy for colour,
@@ -93,6 +95,8 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
     report.simulation_ms = done.timestamps->elapsed_ms(0, 1);
     report.shadow_ms = done.timestamps->elapsed_ms(1, 2);
     report.shading_ms = done.timestamps->elapsed_ms(2, 3);
+    if (options_.shadows) report.hair_shadow_ms = done.timestamps->elapsed_ms(4, 5);
+    report.hair_ms = done.timestamps->elapsed_ms(6, 3);
     report.strands_drawn = strands_[done.slot];
     on_frame(report);
   });
@@ -199,7 +203,9 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
     di.materials = &material_;
     di.material_count = 1;
     di.lod = lod;
+    frame.timestamps->cmd_write(cmd, 4, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     check_tvk(tressvk_cmd_draw_shadow(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_shadow");
+    frame.timestamps->cmd_write(cmd, 5, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
   }
   engine::cmd_end_rendering(cmd);
   frame.timestamps->cmd_write(cmd, 2, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
@@ -242,6 +248,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   di.shadow = options_.shadows ? &shadow_map : nullptr;
   const bool pass_flavour = flavour_ == PassFlavour::render_pass;
   if (options_.hair_path == HairPath::raster) {
+    frame.timestamps->cmd_write(cmd, 6, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
   } else {
     // The opaque depth is final: end the pass, let the compute rasterizer read the depth, and composite the hair
@@ -252,6 +259,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
       engine::cmd_end_rendering(cmd);
     const engine::ResourceState depth_written =
         pass_flavour ? engine::state::kDepthStencilAttachment : engine::state::kDepthAttachment;
+    frame.timestamps->cmd_write(cmd, 6, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     engine::cmd_image_barrier(cmd, target_.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, depth_written, kDepthForRaster);
     TvkRasterInfo ri{};
     ri.struct_size = sizeof(ri);

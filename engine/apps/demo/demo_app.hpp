@@ -28,6 +28,7 @@ struct FrameReport {
   uint32_t index = 0;
   engine::Pixels pixels;
   std::optional<double> simulation_ms, shadow_ms, shading_ms;  // empty when the queue has no timestamps
+  std::optional<double> hair_shadow_ms, hair_ms;  // the hair calls alone (inside the shadow and shading times)
   uint32_t strands_drawn = 0;
 };
 
@@ -48,6 +49,8 @@ class DemoApp {
   TvkContext plugin() const { return plugin_.get(); }
   const TvkAssetInfo& asset_info() const { return hair_->info(); }
   TvkRenderer renderer() const { return hair_->renderer(); }
+  // TVK_RASTER_* flags of the compute path for the frames recorded from now on (tressvk-bench, tests).
+  void set_raster_flags(uint32_t flags) { options_.raster_flags = flags; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
