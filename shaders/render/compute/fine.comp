@@ -5,7 +5,8 @@
 // - a tile with at most kCap segments sorts them all in shared memory (bitonic sort on the depth key);
 // - a fuller tile is cut into depth slices: a histogram of its keys over kBins bins between its nearest and
 //   farthest key, then consecutive bins grouped into slices of at most kCap segments, each loaded, sorted and
-//   composited in turn (a single bin fuller than kCap keeps its kCap nearest-loaded entries and counts the rest
+//   composited in turn (ties in depth broken by the segment's own screen position, so the order never depends
+//   on the submission order) (a single bin fuller than kCap keeps its kCap nearest-loaded entries and counts the rest
 //   in counters[3]);
 // - every pixel evaluates each segment's analytic coverage (the pixel centre's distance to the segment against
 //   its interpolated width), tests the fragment's interpolated depth against the host depth (LESS_OR_EQUAL), and
@@ -22,6 +23,7 @@ const float kOpaque = 1.0 - 0.5 / 255.0;
 
 shared uint s_key[kCap];
 shared uint s_seg[kCap];
+shared uint s_tie[kCap];  // second sort key: segments with the same depth key keep an order of their own
 shared uint s_hist[kBins];
 shared uint s_count, s_done, s_kmin, s_kmax, s_b1, s_frags, s_hair;
 
@@ -105,6 +107,9 @@ void main() {
         if (at < kCap) {
           s_key[at] = entry.x;
           s_seg[at] = entry.y;
+          // Any fixed property of the segment itself (not its index, which depends on the submission order).
+          const uint va = entry.y / (n - 1u) * n + entry.y % (n - 1u);
+          s_tie[at] = floatBitsToUint(verts[2u * va].x) ^ (floatBitsToUint(verts[2u * va + 2u].y) * 0x9e3779b9u);
         }
       }
     }
@@ -114,7 +119,10 @@ void main() {
     if (lid == 0u && loaded > kCap) atomicAdd(counters[3], loaded - kCap);
     uint size = 1u;
     while (size < m) size <<= 1u;
-    for (uint e = m + lid; e < size; e += 64u) s_key[e] = 0xffffffffu;
+    for (uint e = m + lid; e < size; e += 64u) {
+    s_key[e] = 0xffffffffu;
+    s_tie[e] = 0xffffffffu;
+  }
     barrier();
     // Bitonic sort of [0, size) by key, ascending (nearest first).
     for (uint k = 2u; k <= size; k <<= 1u) {
@@ -122,10 +130,13 @@ void main() {
         for (uint i = lid; i < size; i += 64u) {
           const uint l = i ^ j;
           if (l > i) {
-            const uint ki = s_key[i], kl = s_key[l];
-            if ((ki > kl) == ((i & k) == 0u)) {
+            const uint ki = s_key[i], kl = s_key[l], ti = s_tie[i], tl = s_tie[l];
+            const bool greater = ki > kl || (ki == kl && ti > tl);
+            if (greater == ((i & k) == 0u)) {
               s_key[i] = kl;
               s_key[l] = ki;
+              s_tie[i] = tl;
+              s_tie[l] = ti;
               const uint si = s_seg[i];
               s_seg[i] = s_seg[l];
               s_seg[l] = si;
