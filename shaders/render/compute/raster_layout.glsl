@@ -19,6 +19,10 @@ layout(std430, set = 0, binding = 11) buffer Image { uvec2 image[]; };
 // Capture only: the host depth the fine pass read, per pixel.
 layout(std430, set = 0, binding = 12) buffer Capture { float capture_depth[]; };
 
+// Deep opacity map of the hair seen from the shadowed light, kDomSize^2 texels: [texel] nearest hair depth (m, float
+// bits), then kDomLayers layers of fibre density (fixed point, kDomUnit per texel fully covered by one fibre).
+layout(std430, set = 0, binding = 13) buffer Dom { uint dom[]; };
+
 layout(push_constant) uniform Raster {
   uvec4 size;    // x: width, y: height, z: tiles x, w: tiles y
   uvec4 params;  // x: entry capacity, y: strands drawn, z: flags (1 capture, 2 reverse strands), w: segments
@@ -27,6 +31,18 @@ layout(push_constant) uniform Raster {
 const uint kTile = 8u;          // tile edge in pixels (8 x 8 = one workgroup of the fine pass)
 const uint kFlagCapture = 1u;
 const uint kFlagReverse = 2u;
+const uint kFlagShadowed = 4u;   // a shadow map was given: build and read the deep opacity map
+const uint kDomSize = 512u;
+const uint kDomLayers = 4u;
+const float kDomUnit = 1024.0;
+// Layer k holds the fibres between kDomEdge[k] and kDomEdge[k+1] fibre spacings behind the nearest hair.
+const float kDomEdge[5] = float[5](0.0, 2.0, 6.0, 14.0, 1e30);
+
+// Light-space depth in metres from the light's clip z (orthographic or perspective light).
+float light_metres(float z) {
+  const float n = dc.shadow_params.x, f = dc.shadow_params.y;
+  return dc.shadow_params.z > 0.5 ? n * f / max(f - z * (f - n), 1e-12) : n + z * (f - n);
+}
 
 // The same box-filter coverage as the raster path (hair_shade.glsl): overlap of the strand's cross-section of
 // width w (px) centred at distance d from the pixel centre with the pixel's [-1/2, 1/2].

@@ -1,5 +1,5 @@
 // tressvk_cmd_raster_hair: the compute strand rasterizer's passes, recorded outside the host's passes.
-//   clear -> [vertex shading | tile host depth] -> count -> scan -> scatter -> fine (sort + composite per tile)
+//   clear -> [deep opacity map: nearest hair -> fibre layers] -> [vertex shading | tile host depth] -> count -> scan -> scatter -> fine (sort + composite per tile)
 // with a compute-to-compute memory barrier between dependent passes (docs/rendering.md, "The compute path").
 #include "state.hpp"
 
@@ -87,6 +87,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   buffers[kCounters] = {s.counters.buffer, 0, VK_WHOLE_SIZE};
   buffers[kImage] = {s.image.buffer, 0, VK_WHOLE_SIZE};
   buffers[kCapture] = {s.capture_depth.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kDom] = {s.dom.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo depth_image{s.sampler, info->depth_view, info->depth_layout};
   const VkDescriptorImageInfo shadow_image =
       shadowed ? VkDescriptorImageInfo{s.sampler, draw.shadow->depth_view, draw.shadow->layout} : depth_image;
@@ -113,7 +114,8 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   const uint64_t tile_count = uint64_t{tiles_x} * tiles_y;
   const uint64_t segments = uint64_t{drawn} * (n - 1);
   Push push{{width, height, tiles_x, tiles_y},
-            {s.entry_capacity, drawn, info->flags & (TVK_RASTER_CAPTURE | TVK_RASTER_REVERSE_STRANDS),
+            {s.entry_capacity, drawn,
+             (info->flags & (TVK_RASTER_CAPTURE | TVK_RASTER_REVERSE_STRANDS)) | (shadowed ? kFlagShadowed : 0u),
              static_cast<uint32_t>(segments)}};
 
   // The previous frame's raster and composite calls used the same buffers: wait for them (and make their
@@ -125,6 +127,11 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
                  kStorageRW | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   ctx.vk.vkCmdFillBuffer(cmd, s.tiles.buffer, 0, 4 * tile_count, 0);
   ctx.vk.vkCmdFillBuffer(cmd, s.counters.buffer, 0, 4 * kCounterCount, 0);
+  const VkDeviceSize dom_texels = VkDeviceSize{kDomSize} * kDomSize;
+  if (shadowed) {
+    ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 0, 4 * dom_texels, 0x7f800000u);  // nearest hair: +infinity
+    ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 4 * dom_texels, 4 * dom_texels * kDomLayers, 0);
+  }
   memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute, kStorageRW);
 
   ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &set, 0, nullptr);
@@ -132,6 +139,14 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   const auto bind = [&](Pass p) {
     ctx.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[static_cast<size_t>(p)]);
   };
+  if (shadowed) {  // the deep opacity map, read by the vertex shading
+    bind(Pass::dom_front);
+    ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+    compute_to_compute(ctx, cmd);
+    bind(Pass::dom_layers);
+    ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+    compute_to_compute(ctx, cmd);
+  }
   bind(Pass::vertex);
   ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
   bind(Pass::tile_depth);

@@ -119,7 +119,7 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
     for (uint32_t i = 0; i < ctx.frames_in_flight; ++i) {
       const std::array<VkDescriptorPoolSize, 3> sizes{
           VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, r.max_draws},
-          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 11 * r.max_draws},
+          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 12 * r.max_draws},
           VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * r.max_draws}};
       VkDescriptorPoolCreateInfo pci{};
       pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
@@ -142,6 +142,8 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, 0, p[3]);
   if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 1, p[4]);
   if (res == TVK_SUCCESS && !p[5]) res = make_compute(ctx, s.layout, k_spv_fine_comp, 0, p[5]);
+  if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 0, p[6]);
+  if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 1, p[7]);
   return res;
 }
 
@@ -284,6 +286,9 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
     res = grow(ctx, s.counters, 4 * kCounterCount, storage, Memory::device, "hair compute counters");
   if (res == TVK_SUCCESS) res = grow(ctx, s.image, 8 * pixels, storage, Memory::device, "hair compute layer");
   if (res == TVK_SUCCESS)
+    res = grow(ctx, s.dom, 4ull * kDomSize * kDomSize * (1 + kDomLayers), storage, Memory::device,
+               "hair deep opacity map");
+  if (res == TVK_SUCCESS)
     res = grow(ctx, s.stats_readback, 4 * kCounterCount, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host_readback,
                "hair compute statistics");
   // The capture depth binding always needs a buffer; a pixel-sized one only when capturing.
@@ -303,7 +308,8 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
 }
 
 uint64_t memory_bytes(const State& s) {
-  return s.verts.size + s.tiles.size + s.entries.size + s.counters.size + s.image.size + s.capture_depth.size;
+  return s.verts.size + s.tiles.size + s.entries.size + s.counters.size + s.image.size + s.capture_depth.size +
+         s.dom.size;
 }
 
 void destroy(TvkRenderer_T& r) {
@@ -319,7 +325,7 @@ void destroy(TvkRenderer_T& r) {
   if (s.set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.set_layout, c.info.allocator);
   if (s.composite_set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.composite_set_layout, c.info.allocator);
   if (s.sampler) c.vk.vkDestroySampler(dev, s.sampler, c.info.allocator);
-  for (GpuBuffer* b : {&s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
+  for (GpuBuffer* b : {&s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
                        &s.capture_verts, &s.capture_host_depth, &s.capture_image})
     destroy_buffer(c, *b);
   delete r.compute;

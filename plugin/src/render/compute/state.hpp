@@ -12,10 +12,10 @@ namespace tressvk::render::compute {
 
 enum Binding : uint32_t {
   kConstants = 0, kPositions = 1, kTangents = 2, kGuideInfo = 3, kAnchors = 4, kShadowMap = 5, kHostDepth = 6,
-  kVerts = 7, kTiles = 8, kEntries = 9, kCounters = 10, kImage = 11, kCapture = 12, kBindingCount = 13
+  kVerts = 7, kTiles = 8, kEntries = 9, kCounters = 10, kImage = 11, kCapture = 12, kDom = 13, kBindingCount = 14
 };
 
-enum class Pass : uint32_t { vertex = 0, tile_depth, count, scan, scatter, fine, pass_count };
+enum class Pass : uint32_t { vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, pass_count };
 
 struct Push {
   uint32_t size[4];    // width, height, tiles x, tiles y
@@ -25,6 +25,9 @@ struct Push {
 constexpr uint32_t kTile = 8;
 constexpr uint32_t kSliceCapacity = 1024;
 constexpr uint32_t kCounterCount = 8;
+constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster_layout.glsl)
+constexpr uint32_t kDomLayers = 4;
+constexpr uint32_t kFlagShadowed = 4;
 
 struct State {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
@@ -36,7 +39,7 @@ struct State {
   VkPipelineLayout composite_layout = VK_NULL_HANDLE;
   VkPipeline composite = VK_NULL_HANDLE;
 
-  GpuBuffer verts, tiles, entries, counters, image, capture_depth;
+  GpuBuffer verts, tiles, entries, counters, image, capture_depth, dom;
   uint32_t entry_capacity = 0;
   uint32_t image_pixels = 0;    // capacity of `image` in pixels
   uint32_t width = 0, height = 0;  // of the last raster call (the composite draws this)
