@@ -107,7 +107,7 @@ OffscreenTarget create_offscreen_target(const Device& device, uint32_t width, ui
   if (depth_format != VK_FORMAT_UNDEFINED)
     target.depth = Image(device, {width, height, depth_format,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
   return target;
 }
 

@@ -37,6 +37,11 @@ constexpr engine::ResourceState kShadowAfterFrame{
 constexpr engine::ResourceState kShadowSampled{
     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+// The shadow map as tressvk_cmd_shadow_hair takes it (copied out) and leaves it (copied back).
+constexpr engine::ResourceState kShadowToHair{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
+constexpr engine::ResourceState kShadowFromHair{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
 // The opaque depth while the compute rasterizer reads it (render.h, tressvk_cmd_raster_hair).
 constexpr engine::ResourceState kDepthForRaster{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
@@ -193,24 +198,39 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const engine::OffscreenTarget& shadow = scene_renderer_->shadow_target();
   engine::ClearValues clear_shadow;
   engine::cmd_begin_rendering(cmd, shadow, clear_shadow, engine::state::kUndefined, kShadowAfterFrame);
+  TvkDrawInfo shadow_di{};
+  shadow_di.struct_size = sizeof(shadow_di);
+  shadow_di.instance = instance;
+  shadow_di.view = &light;
+  shadow_di.lod_view = &camera;  // the same strands as the camera sees
+  shadow_di.materials = &material_;
+  shadow_di.material_count = 1;
+  shadow_di.lod = lod;
+  const bool compute_path = options_.hair_path == HairPath::compute;
   if (options_.shadows) {
     scene_renderer_->cmd_draw_shadow(cmd, frame.slot, sf);
-    TvkDrawInfo di{};
-    di.struct_size = sizeof(di);
-    di.instance = instance;
-    di.view = &light;
-    di.lod_view = &camera;  // the same strands as the camera sees
-    di.materials = &material_;
-    di.material_count = 1;
-    di.lod = lod;
-    frame.timestamps->cmd_write(cmd, 4, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-    check_tvk(tressvk_cmd_draw_shadow(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_shadow");
-    frame.timestamps->cmd_write(cmd, 5, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    if (!compute_path) {
+      frame.timestamps->cmd_write(cmd, 4, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      check_tvk(tressvk_cmd_draw_shadow(hair_->renderer(), cmd, &shadow_di), ctx, "tressvk_cmd_draw_shadow");
+      frame.timestamps->cmd_write(cmd, 5, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    }
   }
   engine::cmd_end_rendering(cmd);
+  engine::ResourceState shadow_state = engine::state::kDepthAttachment;
+  if (options_.shadows && compute_path) {
+    // The compute path merges the hair's depth into the map outside the pass (render.h, tressvk_cmd_shadow_hair).
+    engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, shadow_state, kShadowToHair);
+    frame.timestamps->cmd_write(cmd, 4, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    TvkShadowRasterInfo sri{};
+    sri.struct_size = sizeof(sri);
+    sri.draw = &shadow_di;
+    sri.shadow_image = shadow.depth.handle();
+    check_tvk(tressvk_cmd_shadow_hair(hair_->renderer(), cmd, &sri), ctx, "tressvk_cmd_shadow_hair");
+    frame.timestamps->cmd_write(cmd, 5, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    shadow_state = kShadowFromHair;
+  }
   frame.timestamps->cmd_write(cmd, 2, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-  engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, engine::state::kDepthAttachment,
-                            kShadowSampled);
+  engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, shadow_state, kShadowSampled);
 
   // Main pass: meshes first (opaque), then the hair over them.
   engine::ClearValues clear;

@@ -182,7 +182,8 @@ TVK_API TvkResult tressvk_cmd_draw_hair(TvkRenderer renderer, VkCommandBuffer co
  * Memory (allocated on first use, grown when a larger view or groom comes, never per frame; old buffers are
  * released frames_in_flight frames later): 8 bytes per pixel for the layer (16.6 MB at 1920x1080, 66.4 MB at
  * 3840x2160) + 16 bytes per 8x8 tile (0.5 MB at 1080p) + 32 bytes per strand vertex + 8 bytes per tile entry
- * (capacity: 4 entries per segment of the groom, at least 2^20, at most what one storage buffer binding allows).
+ * (capacity: 12 entries per segment of the groom, at least 2^20, at most what one storage buffer binding allows;
+ * measured: 5 per segment for 100,000 x 32 strands at 1080p, 9.5 at 4K).
  * Overflow is defined: entries past the capacity are dropped (the farthest-binned segments of some tiles go
  * missing), counted in TvkRasterStats.dropped_entries, and never written out of bounds. */
 #define TVK_RASTER_CAPTURE 0x1u          /* keep a copy of this call's vertices, host depth and layer (tests) */
@@ -200,6 +201,27 @@ typedef struct TvkRasterInfo {
 TVK_API TvkResult tressvk_cmd_raster_hair(TvkRenderer renderer, VkCommandBuffer command_buffer,
                                           const TvkRasterInfo* info);
 TVK_API TvkResult tressvk_cmd_composite_hair(TvkRenderer renderer, VkCommandBuffer command_buffer);
+
+/* Hair depth into the host's shadow map in compute, in place of tressvk_cmd_draw_shadow where raster hardware is
+ * scarce (data-centre GPUs): recorded OUTSIDE any render pass, after the host drew its meshes into the map and
+ * before anything samples it. draw->view is the light (its width x height = the map's size), draw->lod_view the
+ * camera, as for tressvk_cmd_draw_shadow; strands are at least 1.5 texels wide, as there.
+ * Synchronization contract: the map (D32_SFLOAT, single sample, created with TRANSFER_SRC and TRANSFER_DST usage)
+ * comes in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: the host makes its depth writes visible to ALL_TRANSFER /
+ * TRANSFER_READ with that transition first. The call copies the map into a renderer-owned buffer, transitions the
+ * image to TRANSFER_DST_OPTIMAL (an image barrier of its own), keeps the nearer of the map and the hair per texel
+ * in compute, and copies the result back: the map is left in TRANSFER_DST_OPTIMAL, and the host orders the call's
+ * ALL_TRANSFER / TRANSFER_WRITE before its own reads with its transition to its read layout. Its first barrier
+ * orders it after the previous frame's copies of this renderer. State disturbed: the bound compute
+ * pipeline, compute descriptor set 0, push constants. */
+typedef struct TvkShadowRasterInfo {
+  size_t struct_size;                 /* sizeof(TvkShadowRasterInfo) */
+  const void* next;
+  const TvkDrawInfo* draw;
+  VkImage shadow_image;
+} TvkShadowRasterInfo;
+TVK_API TvkResult tressvk_cmd_shadow_hair(TvkRenderer renderer, VkCommandBuffer command_buffer,
+                                          const TvkShadowRasterInfo* info);
 
 /* Counts of the last raster call whose commands the GPU has finished (copied at its end into host memory; read
  * them after the host waited for that frame). */

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Compute rasterizer, passes 2 and 4: one thread per segment walks the 8 x 8 tiles its footprint touches (the
 // pixels whose centre lies within half its width plus half a pixel of it) and, per tile not entirely in front of
-// it in the host's depth, counts it (kScatter = 0) or writes (depth key, segment) at the tile's cursor
+// it in the host's depth, counts it (kScatter = 0) or writes (its depth nearest the tile centre, segment) at the
+// tile's cursor
 // (kScatter = 1). Both passes take exactly the same decisions.
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint kScatter = 0u;
@@ -26,7 +27,6 @@ void main() {
   const uvec2 t0 = uvec2(lo) / kTile;
   const uvec2 t1 = min(uvec2(ceil(hi)) / kTile, pc.size.zw - 1u);
   const float zmin = min(a.z, b.z);
-  const uint key = floatBitsToUint(max(0.5 * (a.z + b.z), 0.0));
   const uint tiles_count = pc.size.z * pc.size.w;
   const float tile_radius = 0.5 * sqrt(2.0) * float(kTile) + reach;
   uint binned = 0u;
@@ -42,7 +42,9 @@ void main() {
         ++binned;
       } else {
         const uint at = atomicAdd(tiles[2u * tiles_count + t], 1u);
-        if (at < pc.params.x) entries[at] = uvec2(key, seg);
+        // Sort key: the segment's depth at its point nearest the tile's centre (not its mid-point: a segment
+        // is often longer than a tile, and what matters is its depth where it crosses this tile).
+        if (at < pc.params.x) entries[at] = uvec2(floatBitsToUint(max(mix(a.z, b.z, s), 0.0)), seg);
       }
     }
   }

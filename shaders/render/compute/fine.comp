@@ -25,6 +25,8 @@ shared uint s_key[kCap];
 shared uint s_seg[kCap];
 shared uint s_tie[kCap];  // second sort key: segments with the same depth key keep an order of their own
 shared uint s_hist[kBins];
+shared vec4 s_p0[64], s_p1[64], s_c0[64], s_c1[64];  // the chunk of segments being composited
+shared vec2 s_p2[64];
 shared uint s_count, s_done, s_kmin, s_kmax, s_b1, s_frags, s_hair;
 
 uint bin_of(uint key, uint kmin, uint kmax) {
@@ -146,33 +148,48 @@ void main() {
         barrier();
       }
     }
-    // Front-to-back compositing of the slice.
-    for (uint e = 0u; e < m; ++e) {
-      if ((e & 31u) == 0u) {
-        barrier();
-        const bool stop = s_done == 64u;
-        barrier();
-        if (stop) break;
+    // Front-to-back compositing of the slice, 64 segments at a time: each thread loads one segment into shared
+    // memory (already in the form the per-pixel test needs), then every pixel walks the 64 in order.
+    for (uint base = 0u; base < m; base += 64u) {
+      barrier();
+      const bool all_done = s_done == 64u;
+      barrier();
+      if (all_done) break;
+      if (base + lid < m) {
+        const uint seg = s_seg[base + lid];
+        const uint i = seg % (n - 1u);
+        const uint va = seg / (n - 1u) * n + i;
+        const vec4 a = verts[2u * va], ca = verts[2u * va + 1u];
+        const vec4 b = verts[2u * va + 2u], cb = verts[2u * va + 3u];
+        const vec2 d = b.xy - a.xy;
+        s_p0[lid] = vec4(a.xy, d);
+        s_p1[lid] = vec4(a.z, b.z - a.z, a.w, b.w - a.w);
+        s_p2[lid] = vec2(1.0 / dot(d, d), i + 2u >= n ? 1.0 : 0.0);
+        s_c0[lid] = ca;
+        s_c1[lid] = cb - ca;
       }
+      barrier();
       if (done) continue;
-      const uint seg = s_seg[e];
-      const uint i = seg % (n - 1u);
-      const uint va = seg / (n - 1u) * n + i;
-      const vec4 a = verts[2u * va], ca = verts[2u * va + 1u];
-      const vec4 b = verts[2u * va + 2u], cb = verts[2u * va + 3u];
-      const vec2 d = b.xy - a.xy;
-      const float t = dot(centre - a.xy, d) / dot(d, d);
-      if (t < 0.0 || t > 1.0 || (t == 1.0 && i + 2u < n)) continue;
-      const float cov = coverage(length(centre - (a.xy + t * d)), mix(a.w, b.w, t));
-      if (cov <= 0.0) continue;
-      if (mix(a.z, b.z, t) > zhost) continue;  // behind the host's opaque surface
-      const float fa = cov * mix(ca.a, cb.a, t);
-      color += (1.0 - alpha) * fa * mix(ca.rgb, cb.rgb, t);
-      alpha += (1.0 - alpha) * fa;
-      ++frags;
-      if (alpha >= kOpaque) {
-        done = true;
-        atomicAdd(s_done, 1u);
+      const uint chunk = min(64u, m - base);
+      for (uint j = 0u; j < chunk; ++j) {
+        const vec4 p0 = s_p0[j];
+        const vec2 rel = centre - p0.xy;
+        const float t = dot(rel, p0.zw) * s_p2[j].x;
+        if (t < 0.0 || t > 1.0 || (t == 1.0 && s_p2[j].y == 0.0)) continue;
+        const vec4 p1 = s_p1[j];
+        const float cov = coverage(length(rel - t * p0.zw), p1.z + t * p1.w);
+        if (cov <= 0.0) continue;
+        if (p1.x + t * p1.y > zhost) continue;  // behind the host's opaque surface
+        const vec4 c = s_c0[j] + t * s_c1[j];
+        const float fa = cov * c.a;
+        color += (1.0 - alpha) * fa * c.rgb;
+        alpha += (1.0 - alpha) * fa;
+        ++frags;
+        if (alpha >= kOpaque) {
+          done = true;
+          atomicAdd(s_done, 1u);
+          break;
+        }
       }
     }
     barrier();

@@ -54,6 +54,8 @@ VkDescriptorType binding_type(uint32_t b) {
   return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
+}  // namespace
+
 TvkResult grow(Context& ctx, GpuBuffer& buffer, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
                const char* name) {
   if (buffer && buffer.size >= size) return TVK_SUCCESS;
@@ -62,7 +64,42 @@ TvkResult grow(Context& ctx, GpuBuffer& buffer, VkDeviceSize size, VkBufferUsage
   return create_buffer(ctx, size, usage, memory, name, buffer);
 }
 
-}  // namespace
+TvkResult ensure_shadow_pipeline(TvkRenderer_T& r) {
+  Context& ctx = *r.ctx;
+  State& s = *r.compute;
+  if (s.shadow) return TVK_SUCCESS;
+  if (!s.shadow_set_layout) {
+    std::array<VkDescriptorSetLayoutBinding, 6> b{};
+    for (uint32_t i = 0; i < 6; ++i) {
+      b[i].binding = i;
+      b[i].descriptorCount = 1;
+      b[i].descriptorType = i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      b[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    VkDescriptorSetLayoutCreateInfo ci{};
+    ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    ci.bindingCount = 6;
+    ci.pBindings = b.data();
+    if (TvkResult res = ctx.check(ctx.vk.vkCreateDescriptorSetLayout(ctx.info.device, &ci, ctx.info.allocator,
+                                                                      &s.shadow_set_layout),
+                                  "vkCreateDescriptorSetLayout (hair shadow compute)");
+        res != TVK_SUCCESS)
+      return res;
+    const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push)};
+    VkPipelineLayoutCreateInfo pci{};
+    pci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    pci.setLayoutCount = 1;
+    pci.pSetLayouts = &s.shadow_set_layout;
+    pci.pushConstantRangeCount = 1;
+    pci.pPushConstantRanges = &range;
+    if (TvkResult res = ctx.check(ctx.vk.vkCreatePipelineLayout(ctx.info.device, &pci, ctx.info.allocator,
+                                                                 &s.shadow_layout),
+                                  "vkCreatePipelineLayout (hair shadow compute)");
+        res != TVK_SUCCESS)
+      return res;
+  }
+  return make_compute(ctx, s.shadow_layout, k_spv_shadow_depth_comp, 0, s.shadow);
+}
 
 TvkResult ensure_pipelines(TvkRenderer_T& r) {
   Context& ctx = *r.ctx;
@@ -118,12 +155,12 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   if (r.compute_pools.empty()) {
     for (uint32_t i = 0; i < ctx.frames_in_flight; ++i) {
       const std::array<VkDescriptorPoolSize, 3> sizes{
-          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, r.max_draws},
-          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 12 * r.max_draws},
+          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * r.max_draws},
+          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 17 * r.max_draws},
           VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * r.max_draws}};
       VkDescriptorPoolCreateInfo pci{};
       pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-      pci.maxSets = 2 * r.max_draws;  // a raster set and a composite set per draw
+      pci.maxSets = 3 * r.max_draws;  // a shadow, a raster and a composite set per draw
       pci.poolSizeCount = static_cast<uint32_t>(sizes.size());
       pci.pPoolSizes = sizes.data();
       VkDescriptorPool pool = VK_NULL_HANDLE;
@@ -268,7 +305,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   const uint64_t max_range = ctx.device_properties.limits.maxStorageBufferRange;
   const uint64_t pixels = uint64_t{width} * height;
   const uint64_t tiles = uint64_t{(width + kTile - 1) / kTile} * ((height + kTile - 1) / kTile);
-  const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(4 * segments, 1u << 20), max_range / 8);
+  const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(12 * segments, 1u << 20), max_range / 8);
   if (32 * vertices > max_range || 8 * pixels > max_range || 16 * tiles > max_range)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
                     "tressvk_cmd_raster_hair: %llu strand vertices or a %ux%u view exceed the device's storage "
@@ -309,7 +346,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
 
 uint64_t memory_bytes(const State& s) {
   return s.verts.size + s.tiles.size + s.entries.size + s.counters.size + s.image.size + s.capture_depth.size +
-         s.dom.size;
+         s.dom.size + s.shadow_depth.size;
 }
 
 void destroy(TvkRenderer_T& r) {
@@ -320,12 +357,15 @@ void destroy(TvkRenderer_T& r) {
   for (VkPipeline p : s.pipelines)
     if (p) c.vk.vkDestroyPipeline(dev, p, c.info.allocator);
   if (s.composite) c.vk.vkDestroyPipeline(dev, s.composite, c.info.allocator);
+  if (s.shadow) c.vk.vkDestroyPipeline(dev, s.shadow, c.info.allocator);
+  if (s.shadow_layout) c.vk.vkDestroyPipelineLayout(dev, s.shadow_layout, c.info.allocator);
+  if (s.shadow_set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.shadow_set_layout, c.info.allocator);
   if (s.layout) c.vk.vkDestroyPipelineLayout(dev, s.layout, c.info.allocator);
   if (s.composite_layout) c.vk.vkDestroyPipelineLayout(dev, s.composite_layout, c.info.allocator);
   if (s.set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.set_layout, c.info.allocator);
   if (s.composite_set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.composite_set_layout, c.info.allocator);
   if (s.sampler) c.vk.vkDestroySampler(dev, s.sampler, c.info.allocator);
-  for (GpuBuffer* b : {&s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
+  for (GpuBuffer* b : {&s.shadow_depth, &s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
                        &s.capture_verts, &s.capture_host_depth, &s.capture_image})
     destroy_buffer(c, *b);
   delete r.compute;

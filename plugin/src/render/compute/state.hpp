@@ -39,6 +39,12 @@ struct State {
   VkPipelineLayout composite_layout = VK_NULL_HANDLE;
   VkPipeline composite = VK_NULL_HANDLE;
 
+  // tressvk_cmd_shadow_hair: its own layout (constants, strands, a copy of the host's shadow map) and pipeline.
+  VkDescriptorSetLayout shadow_set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout shadow_layout = VK_NULL_HANDLE;
+  VkPipeline shadow = VK_NULL_HANDLE;
+  GpuBuffer shadow_depth;
+
   GpuBuffer verts, tiles, entries, counters, image, capture_depth, dom;
   uint32_t entry_capacity = 0;
   uint32_t image_pixels = 0;    // capacity of `image` in pixels
@@ -52,6 +58,9 @@ struct State {
 // Creates the layouts, sampler and compute pipelines on first use.
 TvkResult ensure_pipelines(TvkRenderer_T& r);
 TvkResult ensure_composite_pipeline(TvkRenderer_T& r);
+TvkResult ensure_shadow_pipeline(TvkRenderer_T& r);
+TvkResult grow(Context& ctx, GpuBuffer& buffer, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
+               const char* name);
 // Grows the buffers for a view of width x height and `vertices` strand vertices / `segments` segments.
 TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint64_t vertices, uint64_t segments,
                          bool capture);
