@@ -1,4 +1,9 @@
-/* TressVK rendering: hair shadow and shading passes recorded inside the host's own passes.
+/* TressVK rendering: two ways to draw the hair.
+ * - The raster path (this comment down to TvkRenderer's calls): shadow and shading passes of camera-facing quads
+ *   recorded inside the host's own passes.
+ * - The compute path ("The compute strand rasterizer" below): tressvk_cmd_shadow_hair and tressvk_cmd_raster_hair
+ *   outside the host's passes, tressvk_cmd_composite_hair inside; order-independent, and the fast path on GPUs
+ *   with little raster hardware.
  *
  * Included by tressvk.h. A TvkRenderer draws instances (their simulated `positions` and `tangents` storage
  * buffers) as camera-facing quads expanded in the vertex shader; there are no vertex or index buffers. One
@@ -183,7 +188,8 @@ TVK_API TvkResult tressvk_cmd_draw_hair(TvkRenderer renderer, VkCommandBuffer co
  * released frames_in_flight frames later): 8 bytes per pixel for the layer (16.6 MB at 1920x1080, 66.4 MB at
  * 3840x2160) + 16 bytes per 8x8 tile (0.5 MB at 1080p) + 32 bytes per strand vertex + 8 bytes per tile entry
  * (capacity: 12 entries per segment of the groom, at least 2^20, at most what one storage buffer binding allows;
- * measured: 5 per segment for 100,000 x 32 strands at 1080p, 9.5 at 4K).
+ * measured: 5 per segment for 100,000 x 32 strands at 1080p, 9.5 at 4K) + 5.2 MB for the deep opacity map, and
+ * for tressvk_cmd_shadow_hair 4 bytes per shadow-map texel.
  * Overflow is defined: entries past the capacity are dropped (the farthest-binned segments of some tiles go
  * missing), counted in TvkRasterStats.dropped_entries, and never written out of bounds. */
 #define TVK_RASTER_CAPTURE 0x1u          /* keep a copy of this call's vertices, host depth and layer (tests) */
