@@ -107,7 +107,7 @@ OffscreenTarget create_offscreen_target(const Device& device, uint32_t width, ui
   if (depth_format != VK_FORMAT_UNDEFINED)
     target.depth = Image(device, {width, height, depth_format,
                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT});
+                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
   return target;
 }
 
@@ -120,7 +120,7 @@ void cmd_set_viewport_scissor(VkCommandBuffer cmd, VkExtent2D extent) {
 }
 
 void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, const ClearValues& clear,
-                         const ResourceState& previous_color, const ResourceState& previous_depth) {
+                         const ResourceState& previous_color, const ResourceState& previous_depth, bool load) {
   VkRenderingAttachmentInfo color{};
   color.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
   VkRenderingAttachmentInfo depth{};
@@ -133,7 +133,7 @@ void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, con
     cmd_image_barrier(cmd, target.color.handle(), VK_IMAGE_ASPECT_COLOR_BIT, previous_color, state::kColorAttachment);
     color.imageView = target.color.view();
     color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     for (int i = 0; i < 4; ++i) color.clearValue.color.float32[i] = clear.color[static_cast<size_t>(i)];
     info.colorAttachmentCount = 1;
@@ -143,7 +143,7 @@ void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, con
     cmd_image_barrier(cmd, target.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, previous_depth, state::kDepthAttachment);
     depth.imageView = target.depth.view();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depth.clearValue.depthStencil = {clear.depth, 0};
     info.pDepthAttachment = &depth;
@@ -155,6 +155,9 @@ void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, con
 void cmd_end_rendering(VkCommandBuffer cmd) { vkCmdEndRendering(cmd); }
 
 RenderPassTarget::RenderPassTarget(const Device& device, const OffscreenTarget& target)
+    : RenderPassTarget(device, target, false) {}
+
+RenderPassTarget::RenderPassTarget(const Device& device, const OffscreenTarget& target, bool load)
     : extent_(target.extent()), has_color_(static_cast<bool>(target.color)), has_depth_(static_cast<bool>(target.depth)) {
   std::vector<VkAttachmentDescription> attachments;
   std::vector<VkImageView> views;
@@ -164,11 +167,11 @@ RenderPassTarget::RenderPassTarget(const Device& device, const OffscreenTarget& 
     VkAttachmentDescription a{};
     a.format = image.format();
     a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    a.initialLayout = load ? layout : VK_IMAGE_LAYOUT_UNDEFINED;
     a.finalLayout = layout;
     ref.attachment = static_cast<uint32_t>(attachments.size());
     attachments.push_back(a);

@@ -170,6 +170,9 @@ void TvkRenderer_T::destroy() {
     if (p) c.vk.vkDestroyPipeline(dev, p, c.info.allocator);
   for (VkDescriptorPool p : pools)
     if (p) c.vk.vkDestroyDescriptorPool(dev, p, c.info.allocator);
+  for (VkDescriptorPool p : compute_pools)
+    if (p) c.vk.vkDestroyDescriptorPool(dev, p, c.info.allocator);
+  tressvk::render::compute::destroy(*this);
   if (pipeline_layout) c.vk.vkDestroyPipelineLayout(dev, pipeline_layout, c.info.allocator);
   if (shadowed_pipeline_layout) c.vk.vkDestroyPipelineLayout(dev, shadowed_pipeline_layout, c.info.allocator);
   if (set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, set_layout, c.info.allocator);

@@ -11,6 +11,8 @@
 #include <array>
 #include <vector>
 
+struct TvkRenderer_T;
+
 namespace tressvk::render {
 
 // The pipelines a renderer may need; each is created when a draw first asks for it.
@@ -22,6 +24,11 @@ enum class PipelineKind : uint32_t {
   fringe_shadowed = 4,
   count = 5
 };
+
+namespace compute {
+struct State;
+void destroy(TvkRenderer_T& r);
+}  // namespace compute
 
 }  // namespace tressvk::render
 
@@ -46,11 +53,27 @@ struct TvkRenderer_T {
   uint32_t draws_in_frame = 0;
   uint32_t last_drawn_strands = 0;
 
+  // The compute rasterizer (plugin/src/render/compute/): its per-slot descriptor pools and its state, made on
+  // first use.
+  std::vector<VkDescriptorPool> compute_pools;
+  tressvk::render::compute::State* compute = nullptr;
+
   void destroy();
 };
 
 namespace tressvk::render {
 
 TvkResult create_pipeline(TvkRenderer_T& r, PipelineKind kind);
+
+// Shared by the raster and compute recording calls (render_draw.cpp).
+TvkResult check_draw_info(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info, const char* fn);
+// Switches to this frame's slot (resetting its descriptor pools) and checks max_draws_per_frame.
+TvkResult begin_call(TvkRenderer_T& r, const char* fn);
+// The draw's constants: matrices relative to the instance origin, LOD (strands drawn), materials, lights (their
+// shadowed flag kept only when `shadowed`), shadow projection.
+TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_pass, bool shadowed, const char* fn,
+                         DrawConstants& dc, uint32_t& drawn);
+// Copies the constants into this frame's ring slice; returns their offset in r.ring.
+VkDeviceSize store_constants(TvkRenderer_T& r, const DrawConstants& dc);
 
 }  // namespace tressvk::render

@@ -49,22 +49,10 @@ double lod_fraction(const TvkLodSettings& lod, double distance) {
   return 1.0 + t * (double{lod.min_fraction} - 1.0);
 }
 
-TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info, bool shadow_pass) {
-  Context& ctx = *r.ctx;
-  const char* fn = shadow_pass ? "tressvk_cmd_draw_shadow" : "tressvk_cmd_draw_hair";
-  if (!cmd || !info || info->struct_size != sizeof(TvkDrawInfo) || !info->instance || !info->view)
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: command buffer, info (struct_size), instance or view missing", fn);
-  if (!finite_view(*info->view))
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: view has a non-finite matrix or a zero viewport", fn);
-  if (info->light_count > TVK_MAX_LIGHTS || (info->light_count && !info->lights))
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: light_count %u (at most %u, lights required)", fn,
-                    info->light_count, TVK_MAX_LIGHTS);
-  if (shadow_pass && r.info.shadow.depth_format == VK_FORMAT_UNDEFINED)
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: the renderer was created without a shadow target", fn);
-  const TvkInstance_T& inst = *info->instance;
-  const TvkAsset_T& asset = *inst.asset;
-  const bool shadowed = !shadow_pass && info->shadow && info->shadow->depth_view && info->shadow->sampler;
+}  // namespace
 
+TvkResult begin_call(TvkRenderer_T& r, const char* fn) {
+  Context& ctx = *r.ctx;
   // A new frame: this slot's previous user finished frames_in_flight frames ago (tressvk_new_frame's promise).
   if (r.current_frame != ctx.frame) {
     r.current_frame = ctx.frame;
@@ -74,23 +62,26 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info,
                                   "vkResetDescriptorPool (hair)");
         res != TVK_SUCCESS)
       return res;
+    if (!r.compute_pools.empty())
+      if (TvkResult res = ctx.check(ctx.vk.vkResetDescriptorPool(ctx.info.device, r.compute_pools[r.slot], 0),
+                                    "vkResetDescriptorPool (hair compute)");
+          res != TVK_SUCCESS)
+        return res;
   }
   if (r.draws_in_frame >= r.max_draws)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
                     "%s: more than max_draws_per_frame (%u) draws since the last tressvk_new_frame", fn, r.max_draws);
+  return TVK_SUCCESS;
+}
 
-  using render::PipelineKind;
-  const PipelineKind kinds[2] = {
-      shadow_pass ? PipelineKind::shadow : (shadowed ? PipelineKind::core_shadowed : PipelineKind::core),
-      shadowed ? PipelineKind::fringe_shadowed : PipelineKind::fringe};
-  for (int i = 0; i < (shadow_pass ? 1 : 2); ++i)
-    if (!r.pipelines[static_cast<size_t>(kinds[i])])
-      if (TvkResult res = render::create_pipeline(r, kinds[i]); res != TVK_SUCCESS) return res;
-
-  // Constants.
+TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_pass, bool shadowed, const char* fn,
+                         DrawConstants& dc, uint32_t& drawn) {
+  Context& ctx = *r.ctx;
+  const TvkInstance_T& inst = *info->instance;
+  const TvkAsset_T& asset = *inst.asset;
   const auto& origin = inst.sim_origin;
   const TvkView& view = *info->view;
-  DrawConstants dc{};
+  dc = DrawConstants{};
   relative_matrix(view.view_projection, origin, dc.view_proj);
   for (int i = 0; i < 3; ++i) dc.eye[i] = static_cast<float>(view.eye[i] - origin[i]);
   dc.eye[3] = view.orthographic ? 1.0f : 0.0f;
@@ -104,7 +95,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info,
   const TvkView& lod_view = (shadow_pass && info->lod_view) ? *info->lod_view : view;
   const double dx = lod_view.eye[0] - origin[0], dy = lod_view.eye[1] - origin[1], dz = lod_view.eye[2] - origin[2];
   const double fraction = lod_fraction(info->lod, std::sqrt(dx * dx + dy * dy + dz * dz));
-  const uint32_t drawn = std::clamp(static_cast<uint32_t>(std::ceil(fraction * total)), 1u, total);
+  drawn = std::clamp(static_cast<uint32_t>(std::ceil(fraction * total)), 1u, total);
   dc.counts[0] = n;
   dc.counts[1] = guides;
   dc.counts[2] = drawn;
@@ -138,7 +129,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info,
     normalized(l.direction, gl.direction);
     gl.direction[3] = l.range;
     for (int k = 0; k < 3; ++k) gl.color[k] = l.color[k] * l.intensity;
-    gl.color[3] = l.shadowed ? 1.0f : 0.0f;
+    gl.color[3] = (l.shadowed && shadowed) ? 1.0f : 0.0f;
     gl.cone[0] = std::cos(l.inner_cone);
     gl.cone[1] = std::cos(std::max(l.outer_cone, l.inner_cone + 1e-4f));
   }
@@ -148,10 +139,55 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info,
     dc.shadow_params[1] = info->shadow->far_plane;
     dc.shadow_params[2] = info->shadow->perspective ? 1.0f : 0.0f;
   }
+  return TVK_SUCCESS;
+}
+
+VkDeviceSize store_constants(TvkRenderer_T& r, const DrawConstants& dc) {
   const VkDeviceSize offset = (VkDeviceSize{r.slot} * r.max_draws + r.draws_in_frame) * r.block_stride;
   std::memcpy(static_cast<char*>(r.ring.mapped) + offset, &dc, sizeof(dc));
-  vmaFlushAllocation(ctx.allocator, r.ring.allocation, offset, sizeof(dc));
+  vmaFlushAllocation(r.ctx->allocator, r.ring.allocation, offset, sizeof(dc));
   ++r.draws_in_frame;
+  return offset;
+}
+
+TvkResult check_draw_info(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info, const char* fn) {
+  Context& ctx = *r.ctx;
+  if (!cmd || !info || info->struct_size != sizeof(TvkDrawInfo) || !info->instance || !info->view)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: command buffer, info (struct_size), instance or view missing", fn);
+  if (!finite_view(*info->view))
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: view has a non-finite matrix or a zero viewport", fn);
+  if (info->light_count > TVK_MAX_LIGHTS || (info->light_count && !info->lights))
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: light_count %u (at most %u, lights required)", fn,
+                    info->light_count, TVK_MAX_LIGHTS);
+  return TVK_SUCCESS;
+}
+
+namespace {
+
+TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info, bool shadow_pass) {
+  Context& ctx = *r.ctx;
+  const char* fn = shadow_pass ? "tressvk_cmd_draw_shadow" : "tressvk_cmd_draw_hair";
+  if (TvkResult res = check_draw_info(r, cmd, info, fn); res != TVK_SUCCESS) return res;
+  if (shadow_pass && r.info.shadow.depth_format == VK_FORMAT_UNDEFINED)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: the renderer was created without a shadow target", fn);
+  const TvkInstance_T& inst = *info->instance;
+  const TvkAsset_T& asset = *inst.asset;
+  const bool shadowed = !shadow_pass && info->shadow && info->shadow->depth_view && info->shadow->sampler;
+  if (TvkResult res = begin_call(r, fn); res != TVK_SUCCESS) return res;
+
+  using render::PipelineKind;
+  const PipelineKind kinds[2] = {
+      shadow_pass ? PipelineKind::shadow : (shadowed ? PipelineKind::core_shadowed : PipelineKind::core),
+      shadowed ? PipelineKind::fringe_shadowed : PipelineKind::fringe};
+  for (int i = 0; i < (shadow_pass ? 1 : 2); ++i)
+    if (!r.pipelines[static_cast<size_t>(kinds[i])])
+      if (TvkResult res = render::create_pipeline(r, kinds[i]); res != TVK_SUCCESS) return res;
+
+  DrawConstants dc;
+  uint32_t drawn = 0;
+  if (TvkResult res = fill_constants(r, info, shadow_pass, shadowed, fn, dc, drawn); res != TVK_SUCCESS) return res;
+  const uint32_t n = dc.counts[0];
+  const VkDeviceSize offset = store_constants(r, dc);
 
   // Descriptors.
   VkDescriptorSetAllocateInfo ai{};

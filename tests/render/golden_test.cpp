@@ -1,6 +1,9 @@
 // Golden-image and property tests of the hair renderer, on the demo's scene and frame (the same code the main
 // job runs), on the shared validated device.
 //
+// The default path is the compute strand rasterizer (default_scene_256.png); the raster path keeps its own golden
+// image (default_scene_256_raster.png).
+//
 // Scene: the bundled procedural head with a reduced groom (400 guides x 4), camera framing the head, 256x256,
 // no head motion and a zero time step, so the hair is in its baked rest pose: the images test the renderer and
 // do not change when the simulation model is tuned.
@@ -102,6 +105,25 @@ TEST_CASE("render: golden image of the default scene (dynamic rendering)", "[ren
       if (c[0] > c[2] + 12) ++hair_like;
     }
   CHECK(hair_like > kSize * kSize / 16);
+}
+
+TEST_CASE("render: the raster path (--path raster) still draws its golden image", "[render][vulkan]") {
+  // The quads drawn in the host's pass (tressvk_cmd_draw_hair), kept beside the compute path; its golden image is
+  // the one this path drew before the compute path became the default.
+  Options o = golden_options();
+  o.hair_path = tressvk::demo::HairPath::raster;
+  check_golden(render(o).pixels, "default_scene_256_raster", /*owner=*/true);
+}
+
+TEST_CASE("render: the raster path in a VkRenderPass draws the same image as with dynamic rendering",
+          "[render][vulkan]") {
+  Options o = golden_options();
+  o.hair_path = tressvk::demo::HairPath::raster;
+  const Render dynamic = render(o, PassFlavour::dynamic_rendering);
+  const Render pass = render(o, PassFlavour::render_pass);
+  const auto diff = tressvk::engine::compare_rgba8(dynamic.pixels, pass.pixels, 2);
+  INFO("max channel diff " << diff.max_channel_diff << ", pixels over 2: " << diff.pixels_over);
+  CHECK(diff.fraction_over <= 0.001);
 }
 
 TEST_CASE("render: the VkRenderPass flavour draws the same image as dynamic rendering", "[render][vulkan]") {

@@ -18,7 +18,9 @@ namespace {
 
 constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_SRGB;  // shaders write linear colour; PNG gets sRGB
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr uint32_t kTimestamps = 4;  // begin, after simulation, after shadow, after shading
+// begin, after simulation, after shadow, after shading; then around the hair's shadow call (4, 5) and from the
+// start of the hair's shading calls to the end of shading (6 -> 3).
+constexpr uint32_t kTimestamps = 7;
 
 // Where the previous frame left the shared targets. Old contents are discarded (layout UNDEFINED, every frame
 // clears), but the execution dependency on the previous frame's last use stays: its readback copy for colour,
@@ -28,8 +30,22 @@ constexpr engine::ResourceState kColorAfterReadback{VK_PIPELINE_STAGE_2_COPY_BIT
 constexpr engine::ResourceState kDepthAfterFrame{VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                                                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                                                  VK_IMAGE_LAYOUT_UNDEFINED};
-constexpr engine::ResourceState kShadowAfterFrame{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE,
-                                                  VK_IMAGE_LAYOUT_UNDEFINED};
+constexpr engine::ResourceState kShadowAfterFrame{
+    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE,
+    VK_IMAGE_LAYOUT_UNDEFINED};
+// The shadow map while the main pass's fragment shaders and the compute rasterizer's vertex shading sample it.
+constexpr engine::ResourceState kShadowSampled{
+    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+// The shadow map as tressvk_cmd_shadow_hair takes it (copied out) and leaves it (copied back).
+constexpr engine::ResourceState kShadowToHair{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
+constexpr engine::ResourceState kShadowFromHair{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+// The opaque depth while the compute rasterizer reads it (render.h, tressvk_cmd_raster_hair).
+constexpr engine::ResourceState kDepthForRaster{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                                                VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL};
 
 void to_array(const glm::dmat4& m, double (&out)[16]) { std::memcpy(out, glm::value_ptr(m), sizeof(out)); }
 
@@ -49,7 +65,10 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
       scene_(build_scene(options)),
       target_(engine::create_offscreen_target(device, options.width, options.height, kColorFormat, kDepthFormat)),
       plugin_(device, kFramesInFlight, /*timestamps=*/false) {
-  if (flavour_ == PassFlavour::render_pass) render_pass_ = engine::RenderPassTarget(device, target_);
+  if (flavour_ == PassFlavour::render_pass) {
+    render_pass_ = engine::RenderPassTarget(device, target_);
+    render_pass_load_ = engine::RenderPassTarget(device, target_, /*load=*/true);
+  }
   scene_renderer_ = std::make_unique<SceneRenderer>(device, kColorFormat, kDepthFormat, kShadowMapSize,
                                                     kFramesInFlight, scene_.head, scene_.floor,
                                                     render_pass_.render_pass());
@@ -81,6 +100,8 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
     report.simulation_ms = done.timestamps->elapsed_ms(0, 1);
     report.shadow_ms = done.timestamps->elapsed_ms(1, 2);
     report.shading_ms = done.timestamps->elapsed_ms(2, 3);
+    if (options_.shadows) report.hair_shadow_ms = done.timestamps->elapsed_ms(4, 5);
+    report.hair_ms = done.timestamps->elapsed_ms(6, 3);
     report.strands_drawn = strands_[done.slot];
     on_frame(report);
   });
@@ -177,22 +198,39 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const engine::OffscreenTarget& shadow = scene_renderer_->shadow_target();
   engine::ClearValues clear_shadow;
   engine::cmd_begin_rendering(cmd, shadow, clear_shadow, engine::state::kUndefined, kShadowAfterFrame);
+  TvkDrawInfo shadow_di{};
+  shadow_di.struct_size = sizeof(shadow_di);
+  shadow_di.instance = instance;
+  shadow_di.view = &light;
+  shadow_di.lod_view = &camera;  // the same strands as the camera sees
+  shadow_di.materials = &material_;
+  shadow_di.material_count = 1;
+  shadow_di.lod = lod;
+  const bool compute_path = options_.hair_path == HairPath::compute;
   if (options_.shadows) {
     scene_renderer_->cmd_draw_shadow(cmd, frame.slot, sf);
-    TvkDrawInfo di{};
-    di.struct_size = sizeof(di);
-    di.instance = instance;
-    di.view = &light;
-    di.lod_view = &camera;  // the same strands as the camera sees
-    di.materials = &material_;
-    di.material_count = 1;
-    di.lod = lod;
-    check_tvk(tressvk_cmd_draw_shadow(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_shadow");
+    if (!compute_path) {
+      frame.timestamps->cmd_write(cmd, 4, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      check_tvk(tressvk_cmd_draw_shadow(hair_->renderer(), cmd, &shadow_di), ctx, "tressvk_cmd_draw_shadow");
+      frame.timestamps->cmd_write(cmd, 5, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    }
   }
   engine::cmd_end_rendering(cmd);
+  engine::ResourceState shadow_state = engine::state::kDepthAttachment;
+  if (options_.shadows && compute_path) {
+    // The compute path merges the hair's depth into the map outside the pass (render.h, tressvk_cmd_shadow_hair).
+    engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, shadow_state, kShadowToHair);
+    frame.timestamps->cmd_write(cmd, 4, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    TvkShadowRasterInfo sri{};
+    sri.struct_size = sizeof(sri);
+    sri.draw = &shadow_di;
+    sri.shadow_image = shadow.depth.handle();
+    check_tvk(tressvk_cmd_shadow_hair(hair_->renderer(), cmd, &sri), ctx, "tressvk_cmd_shadow_hair");
+    frame.timestamps->cmd_write(cmd, 5, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    shadow_state = kShadowFromHair;
+  }
   frame.timestamps->cmd_write(cmd, 2, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-  engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, engine::state::kDepthAttachment,
-                            engine::state::kFragmentSampled);
+  engine::cmd_image_barrier(cmd, shadow.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, shadow_state, kShadowSampled);
 
   // Main pass: meshes first (opaque), then the hair over them.
   engine::ClearValues clear;
@@ -228,9 +266,40 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   di.ambient[1] = sf.ambient.y;
   di.ambient[2] = sf.ambient.z;
   di.shadow = options_.shadows ? &shadow_map : nullptr;
-  check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
+  const bool pass_flavour = flavour_ == PassFlavour::render_pass;
+  if (options_.hair_path == HairPath::raster) {
+    frame.timestamps->cmd_write(cmd, 6, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
+  } else {
+    // The opaque depth is final: end the pass, let the compute rasterizer read the depth, and composite the hair
+    // layer in a second pass that keeps the colour.
+    if (pass_flavour)
+      engine::cmd_end_render_pass(cmd);
+    else
+      engine::cmd_end_rendering(cmd);
+    const engine::ResourceState depth_written =
+        pass_flavour ? engine::state::kDepthStencilAttachment : engine::state::kDepthAttachment;
+    frame.timestamps->cmd_write(cmd, 6, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    engine::cmd_image_barrier(cmd, target_.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, depth_written, kDepthForRaster);
+    TvkRasterInfo ri{};
+    ri.struct_size = sizeof(ri);
+    ri.draw = &di;
+    ri.depth_view = target_.depth.view();
+    ri.depth_layout = kDepthForRaster.layout;
+    ri.flags = options_.raster_flags;
+    check_tvk(tressvk_cmd_raster_hair(hair_->renderer(), cmd, &ri), ctx, "tressvk_cmd_raster_hair");
+    if (pass_flavour) {
+      engine::cmd_image_barrier(cmd, target_.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, kDepthForRaster,
+                                engine::state::kDepthStencilAttachment);
+      engine::cmd_begin_render_pass(cmd, render_pass_load_, clear);
+    } else {
+      engine::cmd_begin_rendering(cmd, target_, clear, engine::state::kColorAttachment, kDepthForRaster,
+                                  /*load=*/true);
+    }
+    check_tvk(tressvk_cmd_composite_hair(hair_->renderer(), cmd), ctx, "tressvk_cmd_composite_hair");
+  }
   strands_[frame.slot] = tressvk_get_last_drawn_strands(hair_->renderer());
-  if (flavour_ == PassFlavour::render_pass)
+  if (pass_flavour)
     engine::cmd_end_render_pass(cmd);
   else
     engine::cmd_end_rendering(cmd);

@@ -1,6 +1,8 @@
 // The demo's frame, the way a studio engine integrates TressVK:
 //   simulate (outside passes) -> shadow pass [meshes + tressvk_cmd_draw_shadow] -> barrier (shadow map to
 //   sampled) -> main pass [meshes + tressvk_cmd_draw_hair] -> readback.
+// With the compute path (default) the main pass is split where the opaque depth is final:
+//   main pass [meshes] -> tressvk_cmd_raster_hair (compute, reads depth) -> pass [tressvk_cmd_composite_hair].
 // Frames run in flight (engine::FrameLoop): the GPU renders frame n+1 while the CPU writes the PNG of frame n.
 // GPU timestamps separate simulation, shadow and shading time. Used by tressvk-demo and the golden-image tests.
 #pragma once
@@ -26,6 +28,7 @@ struct FrameReport {
   uint32_t index = 0;
   engine::Pixels pixels;
   std::optional<double> simulation_ms, shadow_ms, shading_ms;  // empty when the queue has no timestamps
+  std::optional<double> hair_shadow_ms, hair_ms;  // the hair calls alone (inside the shadow and shading times)
   uint32_t strands_drawn = 0;
 };
 
@@ -45,6 +48,9 @@ class DemoApp {
   const Scene& scene() const { return scene_; }
   TvkContext plugin() const { return plugin_.get(); }
   const TvkAssetInfo& asset_info() const { return hair_->info(); }
+  TvkRenderer renderer() const { return hair_->renderer(); }
+  // TVK_RASTER_* flags of the compute path for the frames recorded from now on (tressvk-bench, tests).
+  void set_raster_flags(uint32_t flags) { options_.raster_flags = flags; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -55,6 +61,7 @@ class DemoApp {
   Scene scene_;
   engine::OffscreenTarget target_;
   engine::RenderPassTarget render_pass_;
+  engine::RenderPassTarget render_pass_load_;  // compute path, VkRenderPass flavour: the composite pass
   PluginContext plugin_;
   std::unique_ptr<SceneRenderer> scene_renderer_;
   std::unique_ptr<HairHost> hair_;

@@ -45,6 +45,11 @@ int parse_options(int argc, char** argv, Options& options) {
       ->transform(CLI::CheckedTransformer(animations, CLI::ignore_case))
       ->default_str("turn");
   app.add_option("--wind", options.wind, "Wind strength in m/s^2 (0 = none)")->check(CLI::Range(0.0f, 1000.0f));
+  const std::map<std::string, HairPath> paths{{"compute", HairPath::compute}, {"raster", HairPath::raster}};
+  app.add_option("--path", options.hair_path,
+                 "Hair renderer: compute (strand rasterizer, sorted per tile) or raster (quads in the main pass)")
+      ->transform(CLI::CheckedTransformer(paths, CLI::ignore_case))
+      ->default_str("compute");
   bool no_shadows = false;
   app.add_flag("--no-shadows", no_shadows, "Render without the shadow map (no hair or mesh shadows)");
   app.add_option("--camera-distance", options.camera_distance, "Camera distance in metres (0 = frame the scene)")

@@ -8,6 +8,9 @@
 namespace tressvk::demo {
 
 enum class Animation { none, turn, shake, run };
+// How the hair is drawn: the compute strand rasterizer (tressvk_cmd_raster_hair + tressvk_cmd_composite_hair) or
+// the raster path of quads in the host's pass (tressvk_cmd_draw_hair).
+enum class HairPath { compute, raster };
 
 struct Options {
   uint32_t frames = 1;
@@ -24,6 +27,8 @@ struct Options {
   Animation animate = Animation::turn;
   float wind = 0.0f;   // m/s^2
   bool shadows = true;
+  HairPath hair_path = HairPath::compute;  // --path
+  uint32_t raster_flags = 0;               // tests: TVK_RASTER_* flags of the compute path (capture, reverse)
   // Not on the command line of the default run, but used by tests and docs:
   float camera_distance = 0.0f;   // m from the framed centre; 0 = frame the scene
   float lod_start = 0.0f;         // m; LOD from start to end distance down to lod_min_fraction (0 = off)

@@ -1,4 +1,9 @@
-/* TressVK rendering: hair shadow and shading passes recorded inside the host's own passes.
+/* TressVK rendering: two ways to draw the hair.
+ * - The raster path (this comment down to TvkRenderer's calls): shadow and shading passes of camera-facing quads
+ *   recorded inside the host's own passes.
+ * - The compute path ("The compute strand rasterizer" below): tressvk_cmd_shadow_hair and tressvk_cmd_raster_hair
+ *   outside the host's passes, tressvk_cmd_composite_hair inside; order-independent, and the fast path on GPUs
+ *   with little raster hardware.
  *
  * Included by tressvk.h. A TvkRenderer draws instances (their simulated `positions` and `tangents` storage
  * buffers) as camera-facing quads expanded in the vertex shader; there are no vertex or index buffers. One
@@ -147,6 +152,110 @@ TVK_API TvkResult tressvk_cmd_draw_shadow(TvkRenderer renderer, VkCommandBuffer 
 /* Draws shaded, anti-aliased hair into the host's colour and depth targets (inside the host's pass). */
 TVK_API TvkResult tressvk_cmd_draw_hair(TvkRenderer renderer, VkCommandBuffer command_buffer,
                                         const TvkDrawInfo* info);
+
+/* ---- The compute strand rasterizer (docs/rendering.md "The compute path") -----------------------------------
+ * Two calls per frame and instance:
+ *   1. tressvk_cmd_raster_hair, recorded OUTSIDE any render pass once the host's opaque depth is final: shades
+ *      the strands per vertex, bins their segments into 8 x 8 pixel tiles, sorts each tile's segments by depth
+ *      and composites them front to back with analytic coverage, depth-tested against the host's depth, into a
+ *      renderer-owned hair layer (premultiplied linear RGBA, half floats, one per pixel of the view).
+ *   2. tressvk_cmd_composite_hair, recorded INSIDE the host's pass on its colour target (the shading target the
+ *      renderer was created for: dynamic rendering or its VkRenderPass/subpass): one full-screen triangle that
+ *      blends the layer over the colour attachment (ONE, ONE_MINUS_SRC_ALPHA). It neither tests nor writes depth.
+ *
+ * Synchronization contract of tressvk_cmd_raster_hair (it records its own barriers, none of which names a host
+ * resource):
+ * - Reads `depth_view` in the COMPUTE_SHADER stage as a sampled image (texelFetch, SHADER_SAMPLED_READ) in
+ *   `depth_layout` (DEPTH_READ_ONLY_OPTIMAL, DEPTH_STENCIL_READ_ONLY_OPTIMAL or SHADER_READ_ONLY_OPTIMAL): the host
+ *   transitions it from its depth-attachment writes with a barrier to COMPUTE_SHADER / SHADER_SAMPLED_READ first,
+ *   and back afterwards if it draws into it again (the call only reads it).
+ * - Reads the shadow map of draw->shadow (if any) in the COMPUTE_SHADER stage the same way, in shadow->layout.
+ * - Reads positions, tangents and anchors in the COMPUTE_SHADER stage (tressvk_cmd_simulate's exit barrier covers
+ *   it).
+ * - Its own buffers are shared by the frames in flight: its first barrier (COMPUTE_SHADER | FRAGMENT_SHADER |
+ *   ALL_TRANSFER -> COMPUTE_SHADER | ALL_TRANSFER) orders it after the previous frame's raster and composite calls of
+ *   this renderer on the same queue, so it also waits for all earlier compute and fragment work of that queue.
+ * - Its last barrier makes the hair layer visible to FRAGMENT_SHADER storage reads: the composite call may follow
+ *   in any later pass of the same queue with nothing more from the host.
+ * State disturbed: the bound compute pipeline and compute descriptor set 0, push constants.
+ *
+ * tressvk_cmd_composite_hair: inside the host's pass (dynamic rendering or the render pass and subpass of
+ * `shading`), after the opaque draws; reads the layer in the FRAGMENT_SHADER stage; records no barrier. State
+ * disturbed: the bound graphics pipeline, graphics descriptor set 0, push constants; viewport and scissor are the
+ * host's (they must cover the view given to the raster call).
+ *
+ * Memory (allocated on first use, grown when a larger view or groom comes, never per frame; old buffers are
+ * released frames_in_flight frames later): 8 bytes per pixel for the layer (16.6 MB at 1920x1080, 66.4 MB at
+ * 3840x2160) + 16 bytes per 8x8 tile (0.5 MB at 1080p) + 32 bytes per strand vertex + 8 bytes per tile entry
+ * (capacity: 12 entries per segment of the groom, at least 2^20, at most what one storage buffer binding allows;
+ * measured: 5 per segment for 100,000 x 32 strands at 1080p, 9.5 at 4K) + 5.2 MB for the deep opacity map, and
+ * for tressvk_cmd_shadow_hair 4 bytes per shadow-map texel.
+ * Overflow is defined: entries past the capacity are dropped (the farthest-binned segments of some tiles go
+ * missing), counted in TvkRasterStats.dropped_entries, and never written out of bounds. */
+#define TVK_RASTER_CAPTURE 0x1u          /* keep a copy of this call's vertices, host depth and layer (tests) */
+#define TVK_RASTER_REVERSE_STRANDS 0x2u  /* submit the strands in reversed order (order-independence test) */
+
+typedef struct TvkRasterInfo {
+  size_t struct_size;                 /* sizeof(TvkRasterInfo) */
+  const void* next;
+  const TvkDrawInfo* draw;            /* instance, camera view, materials, LOD, lights, ambient, shadow map */
+  VkImageView depth_view;             /* the host's opaque depth (single-sample, depth aspect), view-sized */
+  VkImageLayout depth_layout;
+  uint32_t flags;                     /* TVK_RASTER_* */
+} TvkRasterInfo;
+
+TVK_API TvkResult tressvk_cmd_raster_hair(TvkRenderer renderer, VkCommandBuffer command_buffer,
+                                          const TvkRasterInfo* info);
+TVK_API TvkResult tressvk_cmd_composite_hair(TvkRenderer renderer, VkCommandBuffer command_buffer);
+
+/* Hair depth into the host's shadow map in compute, in place of tressvk_cmd_draw_shadow where raster hardware is
+ * scarce (data-centre GPUs): recorded OUTSIDE any render pass, after the host drew its meshes into the map and
+ * before anything samples it. draw->view is the light (its width x height = the map's size), draw->lod_view the
+ * camera, as for tressvk_cmd_draw_shadow; strands are at least 1.5 texels wide, as there.
+ * Synchronization contract: the map (D32_SFLOAT, single sample, created with TRANSFER_SRC and TRANSFER_DST usage)
+ * comes in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: the host makes its depth writes visible to ALL_TRANSFER /
+ * TRANSFER_READ with that transition first. The call copies the map into a renderer-owned buffer, transitions the
+ * image to TRANSFER_DST_OPTIMAL (an image barrier of its own), keeps the nearer of the map and the hair per texel
+ * in compute, and copies the result back: the map is left in TRANSFER_DST_OPTIMAL, and the host orders the call's
+ * ALL_TRANSFER / TRANSFER_WRITE before its own reads with its transition to its read layout. Its first barrier
+ * orders it after the previous frame's copies of this renderer. State disturbed: the bound compute
+ * pipeline, compute descriptor set 0, push constants. */
+typedef struct TvkShadowRasterInfo {
+  size_t struct_size;                 /* sizeof(TvkShadowRasterInfo) */
+  const void* next;
+  const TvkDrawInfo* draw;
+  VkImage shadow_image;
+} TvkShadowRasterInfo;
+TVK_API TvkResult tressvk_cmd_shadow_hair(TvkRenderer renderer, VkCommandBuffer command_buffer,
+                                          const TvkShadowRasterInfo* info);
+
+/* Counts of the last raster call whose commands the GPU has finished (copied at its end into host memory; read
+ * them after the host waited for that frame). */
+typedef struct TvkRasterStats {
+  uint64_t entries_requested;         /* (tile, segment) pairs binned */
+  uint64_t dropped_entries;           /* of those, over the entry capacity (not drawn) */
+  uint64_t dropped_slice_entries;     /* dropped because one depth bin of a tile held more than a slice */
+  uint64_t segments_binned;
+  uint64_t fragments;                 /* fragments composited (coverage > 0, in front of the host depth) */
+  uint64_t hair_pixels;               /* pixels with alpha > 0 */
+  uint64_t sliced_tiles;              /* tiles that needed depth slices */
+  uint64_t memory_bytes;              /* device memory of the compute path's buffers */
+  uint32_t entry_capacity;
+  uint32_t slice_capacity;            /* segments sorted at once per tile */
+} TvkRasterStats;
+TVK_API TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out_stats);
+
+/* What the last raster call with TVK_RASTER_CAPTURE saw and produced, once the GPU has finished it (tests and
+ * tressvk-bench compare it with a brute-force reference). Pointers stay valid until the next capture. */
+typedef struct TvkRasterCapture {
+  uint32_t width, height;
+  uint32_t vertices_per_strand, strands;  /* strands drawn (after LOD) */
+  const float* vertices;              /* strands * vertices_per_strand * 8: x px, y px, depth, width px, r, g, b,
+                                         opacity (depth < 0: behind the eye) */
+  const float* host_depth;            /* width * height */
+  const uint16_t* layer;              /* width * height * 4 half floats: premultiplied r, g, b, alpha */
+} TvkRasterCapture;
+TVK_API TvkResult tressvk_get_raster_capture(TvkRenderer renderer, TvkRasterCapture* out_capture);
 
 /* Strands the last draw call of `renderer` drew (after LOD), for statistics and tests. */
 TVK_API uint32_t tressvk_get_last_drawn_strands(TvkRenderer renderer);

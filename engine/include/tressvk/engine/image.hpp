@@ -72,10 +72,11 @@ struct ClearValues {
 };
 
 // Transitions the target from `previous` (per attachment; kUndefined discards the old contents) to attachment
-// layouts, begins dynamic rendering with clears, and sets a full-target viewport and scissor.
+// layouts, begins dynamic rendering with clears (or, with `load`, keeping the contents: `previous` must then
+// name their real layouts), and sets a full-target viewport and scissor.
 void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, const ClearValues& clear,
                          const ResourceState& previous_color = state::kUndefined,
-                         const ResourceState& previous_depth = state::kUndefined);
+                         const ResourceState& previous_depth = state::kUndefined, bool load = false);
 void cmd_end_rendering(VkCommandBuffer cmd);
 
 // The same target through a classic VkRenderPass + VkFramebuffer (one subpass), for hosts that do not use
@@ -87,6 +88,10 @@ class RenderPassTarget {
  public:
   RenderPassTarget() = default;
   RenderPassTarget(const Device& device, const OffscreenTarget& target);
+  // With `load`: a pass that keeps the attachments' contents (LOAD ops), entered with colour in
+  // COLOR_ATTACHMENT_OPTIMAL and depth in DEPTH_STENCIL_ATTACHMENT_OPTIMAL (a second pass on the same target,
+  // compatible with the clearing one, so the same pipelines draw in both).
+  RenderPassTarget(const Device& device, const OffscreenTarget& target, bool load);
   VkRenderPass render_pass() const { return render_pass_.get(); }
   VkFramebuffer framebuffer() const { return framebuffer_.get(); }
   VkExtent2D extent() const { return extent_; }

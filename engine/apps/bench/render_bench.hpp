@@ -1,0 +1,32 @@
+// tressvk-bench render: the hair renderer's speed at a resolution and, from the same run, its error against the
+// brute-force sorted reference (tressvk/reference/strand_raster.hpp).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace tressvk::bench {
+
+struct RenderBenchOptions {
+  std::string asset;            // .tvkhair; empty: the bundled sample
+  std::string mesh;             // OBJ head mesh (asset space)
+  float mesh_scale = 1.0f;
+  uint32_t width = 1920, height = 1080;
+  std::string path = "compute";  // compute or raster
+  uint32_t frames = 30;         // timed frames, back to back
+  uint32_t warmup = 10;
+  uint32_t guides = 1200, follows = 7, vertices = 48;  // the bundled groom
+  float lod_fraction = 1.0f;    // < 1: coverage-preserving LOD down to this fraction of the strands
+  std::string animate = "turn";
+  std::string json, png, device;
+  bool validation = false;
+  bool no_reference = false;
+};
+
+CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& options);
+// Runs the benchmark; returns the process exit code (prints its own errors).
+int run_render_bench(const RenderBenchOptions& options);
+
+}  // namespace tressvk::bench

@@ -1,0 +1,202 @@
+// tressvk_cmd_raster_hair: the compute strand rasterizer's passes, recorded outside the host's passes.
+//   clear -> [deep opacity map: nearest hair -> fibre layers] -> [vertex shading | tile host depth] -> count -> scan -> scatter -> fine (sort + composite per tile)
+// with a compute-to-compute memory barrier between dependent passes (docs/rendering.md, "The compute path").
+#include "state.hpp"
+
+#include "../../objects.hpp"
+
+#include <algorithm>
+
+namespace tressvk::render::compute {
+
+namespace {
+
+void memory_barrier(Context& ctx, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+  VkMemoryBarrier2 b{};
+  b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+  b.srcStageMask = src_stage;
+  b.srcAccessMask = src_access;
+  b.dstStageMask = dst_stage;
+  b.dstAccessMask = dst_access;
+  VkDependencyInfo di{};
+  di.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+  di.memoryBarrierCount = 1;
+  di.pMemoryBarriers = &b;
+  ctx.vk.vkCmdPipelineBarrier2(cmd, &di);
+}
+
+constexpr VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+constexpr VkAccessFlags2 kStorageRW = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+
+void compute_to_compute(Context& ctx, VkCommandBuffer cmd) {
+  memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kCompute, kStorageRW);
+}
+
+uint32_t groups(uint64_t items, uint32_t size) { return static_cast<uint32_t>((items + size - 1) / size); }
+
+TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* info) {
+  Context& ctx = *r.ctx;
+  const char* fn = "tressvk_cmd_raster_hair";
+  if (!info || info->struct_size != sizeof(TvkRasterInfo))
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: info is NULL or has a wrong struct_size", fn);
+  if (TvkResult res = check_draw_info(r, cmd, info->draw, fn); res != TVK_SUCCESS) return res;
+  if (!info->depth_view)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: depth_view (the host's opaque depth) is required", fn);
+  const TvkDrawInfo& draw = *info->draw;
+  const bool capture = (info->flags & TVK_RASTER_CAPTURE) != 0;
+  if (TvkResult res = begin_call(r, fn); res != TVK_SUCCESS) return res;
+  if (TvkResult res = ensure_pipelines(r); res != TVK_SUCCESS) return res;
+  State& s = *r.compute;
+
+  const bool shadowed = draw.shadow && draw.shadow->depth_view;
+  DrawConstants dc;
+  uint32_t drawn = 0;
+  if (TvkResult res = fill_constants(r, &draw, false, shadowed, fn, dc, drawn); res != TVK_SUCCESS) return res;
+  const TvkInstance_T& inst = *draw.instance;
+  const TvkAsset_T& asset = *inst.asset;
+  const uint32_t n = dc.counts[0];
+  const uint32_t total = asset.cpu.total_strands();
+  const uint32_t width = draw.view->width, height = draw.view->height;
+  // Sized for the whole groom (not this frame's LOD), so a changing LOD never reallocates.
+  if (TvkResult res = ensure_buffers(r, width, height, uint64_t{total} * n, uint64_t{total} * (n - 1), capture);
+      res != TVK_SUCCESS)
+    return res;
+  const VkDeviceSize constants_offset = store_constants(r, dc);
+
+  // Descriptors.
+  VkDescriptorSetAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  ai.descriptorPool = r.compute_pools[r.slot];
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &s.set_layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  if (TvkResult res = ctx.check(ctx.vk.vkAllocateDescriptorSets(ctx.info.device, &ai, &set),
+                                "vkAllocateDescriptorSets (hair compute)");
+      res != TVK_SUCCESS)
+    return res;
+  std::array<VkDescriptorBufferInfo, kBindingCount> buffers{};
+  buffers[kConstants] = {r.ring.buffer, constants_offset, sizeof(DrawConstants)};
+  buffers[kPositions] = {inst.positions.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kTangents] = {inst.tangents.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kGuideInfo] = {asset.statics[sim::kBindingGuideInfo - sim::kBindingRestPositions].buffer, 0, VK_WHOLE_SIZE};
+  buffers[kAnchors] = {inst.anchors.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kVerts] = {s.verts.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kTiles] = {s.tiles.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kEntries] = {s.entries.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kCounters] = {s.counters.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kImage] = {s.image.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kCapture] = {s.capture_depth.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kDom] = {s.dom.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorImageInfo depth_image{s.sampler, info->depth_view, info->depth_layout};
+  const VkDescriptorImageInfo shadow_image =
+      shadowed ? VkDescriptorImageInfo{s.sampler, draw.shadow->depth_view, draw.shadow->layout} : depth_image;
+  std::array<VkWriteDescriptorSet, kBindingCount> writes{};
+  for (uint32_t i = 0; i < kBindingCount; ++i) {
+    writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[i].dstSet = set;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    if (i == kConstants) {
+      writes[i].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+      writes[i].pBufferInfo = &buffers[i];
+    } else if (i == kShadowMap || i == kHostDepth) {
+      writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+      writes[i].pImageInfo = i == kShadowMap ? &shadow_image : &depth_image;
+    } else {
+      writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      writes[i].pBufferInfo = &buffers[i];
+    }
+  }
+  ctx.vk.vkUpdateDescriptorSets(ctx.info.device, kBindingCount, writes.data(), 0, nullptr);
+
+  const uint32_t tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
+  const uint64_t tile_count = uint64_t{tiles_x} * tiles_y;
+  const uint64_t segments = uint64_t{drawn} * (n - 1);
+  Push push{{width, height, tiles_x, tiles_y},
+            {s.entry_capacity, drawn,
+             (info->flags & (TVK_RASTER_CAPTURE | TVK_RASTER_REVERSE_STRANDS)) | (shadowed ? kFlagShadowed : 0u),
+             static_cast<uint32_t>(segments)}};
+
+  // The previous frame's raster and composite calls used the same buffers: wait for them (and make their
+  // writes available) before clearing.
+  memory_barrier(ctx, cmd,
+                 kCompute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                 kCompute | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 kStorageRW | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  ctx.vk.vkCmdFillBuffer(cmd, s.tiles.buffer, 0, 4 * tile_count, 0);
+  ctx.vk.vkCmdFillBuffer(cmd, s.counters.buffer, 0, 4 * kCounterCount, 0);
+  const VkDeviceSize dom_texels = VkDeviceSize{kDomSize} * kDomSize;
+  if (shadowed) {
+    ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 0, 4 * dom_texels, 0x7f800000u);  // nearest hair: +infinity
+    ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 4 * dom_texels, 4 * dom_texels * kDomLayers, 0);
+  }
+  memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute, kStorageRW);
+
+  ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &set, 0, nullptr);
+  ctx.vk.vkCmdPushConstants(cmd, s.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  const auto bind = [&](Pass p) {
+    ctx.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[static_cast<size_t>(p)]);
+  };
+  if (shadowed) {  // the deep opacity map, read by the vertex shading
+    bind(Pass::dom_front);
+    ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+    compute_to_compute(ctx, cmd);
+    bind(Pass::dom_layers);
+    ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+    compute_to_compute(ctx, cmd);
+  }
+  bind(Pass::vertex);
+  ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
+  bind(Pass::tile_depth);
+  ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
+  compute_to_compute(ctx, cmd);
+  bind(Pass::count);
+  ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+  compute_to_compute(ctx, cmd);
+  bind(Pass::scan);
+  ctx.vk.vkCmdDispatch(cmd, 1, 1, 1);
+  compute_to_compute(ctx, cmd);
+  bind(Pass::scatter);
+  ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+  compute_to_compute(ctx, cmd);
+  bind(Pass::fine);
+  ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
+  // The layer for the composite call's fragment shader; the counters (and captures) for the copies below.
+  memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  const VkBufferCopy counters{0, 0, 4 * kCounterCount};
+  ctx.vk.vkCmdCopyBuffer(cmd, s.counters.buffer, s.stats_readback.buffer, 1, &counters);
+  if (capture) {
+    const uint64_t pixels = uint64_t{width} * height;
+    const VkBufferCopy verts{0, 0, 32 * uint64_t{drawn} * n};
+    const VkBufferCopy depth{0, 0, 4 * pixels};
+    const VkBufferCopy layer{0, 0, 8 * pixels};
+    ctx.vk.vkCmdCopyBuffer(cmd, s.verts.buffer, s.capture_verts.buffer, 1, &verts);
+    ctx.vk.vkCmdCopyBuffer(cmd, s.capture_depth.buffer, s.capture_host_depth.buffer, 1, &depth);
+    ctx.vk.vkCmdCopyBuffer(cmd, s.image.buffer, s.capture_image.buffer, 1, &layer);
+    s.capture = TvkRasterCapture{width, height, n, drawn, nullptr, nullptr, nullptr};
+    s.captured = true;
+  }
+  memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                 VK_ACCESS_2_HOST_READ_BIT);
+  s.width = width;
+  s.height = height;
+  r.last_drawn_strands = drawn;
+  return TVK_SUCCESS;
+}
+
+}  // namespace
+
+}  // namespace tressvk::render::compute
+
+extern "C" {
+
+TvkResult tressvk_cmd_raster_hair(TvkRenderer renderer, VkCommandBuffer command_buffer, const TvkRasterInfo* info) {
+  if (!renderer) return TVK_ERROR_INVALID_ARGUMENT;
+  return tressvk::render::compute::record(*renderer, command_buffer, info);
+}
+
+}  // extern "C"

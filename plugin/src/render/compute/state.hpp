@@ -1,0 +1,69 @@
+// The compute strand rasterizer's state inside a TvkRenderer: pipelines (made on first use), buffers (grown to
+// the largest view and groom seen, never per frame) and the capture/statistics readback. Bindings and push
+// constants match shaders/render/compute/raster_layout.glsl.
+#pragma once
+
+#include "../../render.hpp"
+
+#include <array>
+#include <cstdint>
+
+namespace tressvk::render::compute {
+
+enum Binding : uint32_t {
+  kConstants = 0, kPositions = 1, kTangents = 2, kGuideInfo = 3, kAnchors = 4, kShadowMap = 5, kHostDepth = 6,
+  kVerts = 7, kTiles = 8, kEntries = 9, kCounters = 10, kImage = 11, kCapture = 12, kDom = 13, kBindingCount = 14
+};
+
+enum class Pass : uint32_t { vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, pass_count };
+
+struct Push {
+  uint32_t size[4];    // width, height, tiles x, tiles y
+  uint32_t params[4];  // entry capacity, strands drawn, flags, segments
+};
+
+constexpr uint32_t kTile = 8;
+constexpr uint32_t kSliceCapacity = 1024;
+constexpr uint32_t kCounterCount = 8;
+constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster_layout.glsl)
+constexpr uint32_t kDomLayers = 4;
+constexpr uint32_t kFlagShadowed = 4;
+
+struct State {
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  std::array<VkPipeline, static_cast<size_t>(Pass::pass_count)> pipelines{};
+  VkSampler sampler = VK_NULL_HANDLE;  // nearest, for texelFetch of the host's depth and shadow map
+
+  VkDescriptorSetLayout composite_set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout composite_layout = VK_NULL_HANDLE;
+  VkPipeline composite = VK_NULL_HANDLE;
+
+  // tressvk_cmd_shadow_hair: its own layout (constants, strands, a copy of the host's shadow map) and pipeline.
+  VkDescriptorSetLayout shadow_set_layout = VK_NULL_HANDLE;
+  VkPipelineLayout shadow_layout = VK_NULL_HANDLE;
+  VkPipeline shadow = VK_NULL_HANDLE;
+  GpuBuffer shadow_depth;
+
+  GpuBuffer verts, tiles, entries, counters, image, capture_depth, dom;
+  uint32_t entry_capacity = 0;
+  uint32_t image_pixels = 0;    // capacity of `image` in pixels
+  uint32_t width = 0, height = 0;  // of the last raster call (the composite draws this)
+  GpuBuffer stats_readback;     // counters of the last call
+  GpuBuffer capture_verts, capture_host_depth, capture_image;  // host-readable copies (TVK_RASTER_CAPTURE)
+  TvkRasterCapture capture{};
+  bool captured = false;
+};
+
+// Creates the layouts, sampler and compute pipelines on first use.
+TvkResult ensure_pipelines(TvkRenderer_T& r);
+TvkResult ensure_composite_pipeline(TvkRenderer_T& r);
+TvkResult ensure_shadow_pipeline(TvkRenderer_T& r);
+TvkResult grow(Context& ctx, GpuBuffer& buffer, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
+               const char* name);
+// Grows the buffers for a view of width x height and `vertices` strand vertices / `segments` segments.
+TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint64_t vertices, uint64_t segments,
+                         bool capture);
+uint64_t memory_bytes(const State& s);
+
+}  // namespace tressvk::render::compute

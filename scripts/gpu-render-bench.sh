@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The hair rendering table of docs/rendering.md on a real GPU, with portable binaries (cmake --preset portable):
+# every row is one `tressvk-bench render` run (speed of warm back-to-back frames, then the error of one more
+# frame against the brute-force sorted reference, same run), one JSON file per row, plus a PNG per scene.
+#
+#   scripts/gpu-render-bench.sh OUTDIR [BINDIR [ASSETDIR]]
+#
+# BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default build/portable/{engine,baker,plugin}).
+# ASSETDIR (default ../shared/data) holds tressfx/ratboy/Ratboy_mohawk.tfx and sintel/{sintel_hair.tfx,sintel.obj};
+# rows whose data is absent are skipped. QUICK=1 runs only the three target rows. On a machine without a Vulkan
+# loader, install it first and point VK_DRIVER_FILES at the driver's ICD JSON (see scripts/gpu-bench.sh).
+set -euo pipefail
+OUT=${1:?usage: gpu-render-bench.sh OUTDIR [BINDIR [ASSETDIR]]}
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BIN=${2:-}
+DATA=${3:-$ROOT/../shared/data}
+mkdir -p "$OUT"
+if [ -z "$BIN" ]; then
+  BENCH="$ROOT/build/portable/engine/tressvk-bench"
+  BAKE="$ROOT/build/portable/baker/tressvk-bake"
+  export LD_LIBRARY_PATH="$ROOT/build/portable/plugin:${LD_LIBRARY_PATH:-}"
+else
+  BENCH="$BIN/tressvk-bench"
+  BAKE="$BIN/tressvk-bake"
+  export LD_LIBRARY_PATH="$BIN:${LD_LIBRARY_PATH:-}"
+fi
+HD="--width 1920 --height 1080"
+TIMED="--frames ${FRAMES:-60} --warmup ${WARMUP:-30}"
+
+row() {  # name, then bench arguments
+  local name=$1; shift
+  echo "== $name: $*" >> "$OUT/summary.txt"
+  if "$BENCH" render "$@" --json "$OUT/$name.json" > "$OUT/$name.log" 2>&1; then
+    grep -E '"(device|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|strands_drawn)"' "$OUT/$name.json" |
+      tr -d '\n' >> "$OUT/summary.txt"
+    echo >> "$OUT/summary.txt"
+  else
+    echo "FAILED ($?): $(tail -3 "$OUT/$name.log")" >> "$OUT/summary.txt"
+  fi
+}
+
+RATBOY=""
+if [ -f "$DATA/tressfx/ratboy/Ratboy_mohawk.tfx" ]; then
+  RATBOY="$OUT/ratboy_mohawk_4follows.tvkhair"
+  "$BAKE" "$DATA/tressfx/ratboy/Ratboy_mohawk.tfx" --follow 4 -o "$RATBOY" > "$OUT/bake_ratboy.log" 2>&1
+fi
+SINTEL=""
+if [ -f "$DATA/sintel/sintel_hair.tfx" ]; then
+  SINTEL="$OUT/sintel_6follows.tvkhair"
+  "$BAKE" "$DATA/sintel/sintel_hair.tfx" --scale 0.0046 --follow 6 -o "$SINTEL" > "$OUT/bake_sintel.log" 2>&1
+fi
+
+# The targets: bundled sample, Ratboy mohawk + 4 follows, 100,000 strands x 32 (compute path, 1080p).
+row sample-compute-1080p $HD $TIMED --png "$OUT/sample-compute-1080p.png"
+[ -n "$RATBOY" ] && row ratboy4-compute-1080p --asset "$RATBOY" $HD $TIMED --animate shake --png "$OUT/ratboy4-compute-1080p.png"
+row 100k-compute-1080p --guides 12500 --follows 7 --vertices 32 $HD $TIMED
+[ "${QUICK:-0}" = 1 ] && exit 0
+
+# The raster path on the same frames (speed only: it has no capture for the reference).
+row sample-raster-1080p $HD --frames 10 --warmup 5 --path raster --png "$OUT/sample-raster-1080p.png"
+[ -n "$RATBOY" ] && row ratboy4-raster-1080p --asset "$RATBOY" $HD --frames 10 --warmup 5 --animate shake --path raster
+# Sintel with her mesh (hair in front of and behind an opaque mesh).
+[ -n "$SINTEL" ] && row sintel6-compute-1080p --asset "$SINTEL" --mesh "$DATA/sintel/sintel.obj" --mesh-scale 0.0046 \
+  $HD $TIMED --png "$OUT/sintel6-compute-1080p.png"
+# Speed against error: resolution and LOD.
+row sample-compute-540p --width 960 --height 540 $TIMED
+row sample-compute-2160p --width 3840 --height 2160 $TIMED
+row sample-compute-1080p-lod50 $HD $TIMED --lod-fraction 0.5
+row sample-compute-1080p-lod25 $HD $TIMED --lod-fraction 0.25
+row 100k-compute-1080p-lod25 --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25
+row 100k-compute-2160p --guides 12500 --follows 7 --vertices 32 --width 3840 --height 2160 $TIMED

@@ -1,0 +1,55 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Compute rasterizer, passes 2 and 4: one thread per segment walks the 8 x 8 tiles its footprint touches (the
+// pixels whose centre lies within half its width plus half a pixel of it) and, per tile not entirely in front of
+// it in the host's depth, counts it (kScatter = 0) or writes (its depth nearest the tile centre, segment) at the
+// tile's cursor
+// (kScatter = 1). Both passes take exactly the same decisions.
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const uint kScatter = 0u;
+#include "render/compute/raster_layout.glsl"
+
+void main() {
+  const uint seg = gl_GlobalInvocationID.x;
+  if (seg >= pc.params.w) return;
+  const uint n = dc.counts.x;
+  const uint va = seg / (n - 1u) * n + seg % (n - 1u);
+  const vec4 a = verts[2u * va];
+  const vec4 b = verts[2u * va + 2u];
+  if (a.z < 0.0 || b.z < 0.0 || min(a.z, b.z) > 1.0) return;  // behind the eye or beyond the far plane
+  const vec2 d = b.xy - a.xy;
+  const float len2 = dot(d, d);
+  if (len2 < 1e-8) return;  // no screen extent (pointing at the eye): the neighbours cover it
+  const float reach = 0.5 * max(a.w, b.w) + 0.5;
+  const vec2 lo = max(min(a.xy, b.xy) - reach, vec2(0.0));
+  const vec2 hi = min(max(a.xy, b.xy) + reach, vec2(pc.size.xy));
+  if (any(greaterThanEqual(lo, hi))) return;
+  const uvec2 t0 = uvec2(lo) / kTile;
+  const uvec2 t1 = min(uvec2(ceil(hi)) / kTile, pc.size.zw - 1u);
+  const float zmin = min(a.z, b.z);
+  const uint tiles_count = pc.size.z * pc.size.w;
+  const float tile_radius = 0.5 * sqrt(2.0) * float(kTile) + reach;
+  uint binned = 0u;
+  for (uint ty = t0.y; ty <= t1.y; ++ty) {
+    for (uint tx = t0.x; tx <= t1.x; ++tx) {
+      const uint t = ty * pc.size.z + tx;
+      if (zmin > uintBitsToFloat(tiles[3u * tiles_count + t])) continue;  // behind the host depth everywhere
+      const vec2 c = (vec2(tx, ty) + 0.5) * float(kTile);
+      const float s = clamp(dot(c - a.xy, d) / len2, 0.0, 1.0);
+      if (length(c - (a.xy + s * d)) > tile_radius) continue;  // the footprint misses this tile
+      if (kScatter == 0u) {
+        atomicAdd(tiles[t], 1u);
+        ++binned;
+      } else {
+        const uint at = atomicAdd(tiles[2u * tiles_count + t], 1u);
+        // Sort key: the segment's depth at its point nearest the tile's centre (not its mid-point: a segment
+        // is often longer than a tile, and what matters is its depth where it crosses this tile).
+        if (at < pc.params.x) entries[at] = uvec2(floatBitsToUint(max(mix(a.z, b.z, s), 0.0)), seg);
+      }
+    }
+  }
+  if (kScatter == 0u && binned > 0u) {
+    atomicAdd(counters[0], binned);
+    atomicAdd(counters[2], 1u);
+  }
+}

@@ -1,0 +1,49 @@
+// The compute strand rasterizer's resources (plugin/src/render/compute/). Set 0 bindings 0-4 are the hair
+// passes' (hair_layout.glsl: constants, positions, tangents, guide info, anchors); 5-12 are the rasterizer's.
+// Must match plugin/src/render/compute/state.hpp.
+#include "render/hair_layout.glsl"
+
+layout(set = 0, binding = 5) uniform sampler2D shadow_map;   // host shadow map (bound to the depth view if none)
+layout(set = 0, binding = 6) uniform sampler2D host_depth;   // host opaque depth, Vulkan 0..1, LESS_OR_EQUAL
+// Per drawn vertex v: [2v] = (x px, y px, depth 0..1 or -1 if culled, width px), [2v+1] = (linear rgb, opacity).
+layout(std430, set = 0, binding = 7) buffer Verts { vec4 verts[]; };
+// Per tile t of T: [t] segment count, [T+t] first entry, [2T+t] scatter cursor, [3T+t] farthest host depth bits.
+layout(std430, set = 0, binding = 8) buffer Tiles { uint tiles[]; };
+// Tile entries: x = sort key (depth bits), y = segment index.
+layout(std430, set = 0, binding = 9) buffer Entries { uvec2 entries[]; };
+// 0: entries requested, 1: entries dropped (over capacity), 2: segments binned, 3: entries dropped from an
+// over-full depth bin, 4: fragments composited, 5: hair pixels, 6: tiles that needed depth slices.
+layout(std430, set = 0, binding = 10) buffer Counters { uint counters[]; };
+// Output, per pixel: premultiplied rgba as two packHalf2x16 words.
+layout(std430, set = 0, binding = 11) buffer Image { uvec2 image[]; };
+// Capture only: the host depth the fine pass read, per pixel.
+layout(std430, set = 0, binding = 12) buffer Capture { float capture_depth[]; };
+
+// Deep opacity map of the hair seen from the shadowed light, kDomSize^2 texels: [texel] nearest hair depth (m, float
+// bits), then kDomLayers layers of fibre density (fixed point, kDomUnit per texel fully covered by one fibre).
+layout(std430, set = 0, binding = 13) buffer Dom { uint dom[]; };
+
+layout(push_constant) uniform Raster {
+  uvec4 size;    // x: width, y: height, z: tiles x, w: tiles y
+  uvec4 params;  // x: entry capacity, y: strands drawn, z: flags (1 capture, 2 reverse strands), w: segments
+} pc;
+
+const uint kTile = 8u;          // tile edge in pixels (8 x 8 = one workgroup of the fine pass)
+const uint kFlagCapture = 1u;
+const uint kFlagReverse = 2u;
+const uint kFlagShadowed = 4u;   // a shadow map was given: build and read the deep opacity map
+const uint kDomSize = 512u;
+const uint kDomLayers = 4u;
+const float kDomUnit = 1024.0;
+// Layer k holds the fibres between kDomEdge[k] and kDomEdge[k+1] fibre spacings behind the nearest hair.
+const float kDomEdge[5] = float[5](0.0, 2.0, 6.0, 14.0, 1e30);
+
+// Light-space depth in metres from the light's clip z (orthographic or perspective light).
+float light_metres(float z) {
+  const float n = dc.shadow_params.x, f = dc.shadow_params.y;
+  return dc.shadow_params.z > 0.5 ? n * f / max(f - z * (f - n), 1e-12) : n + z * (f - n);
+}
+
+// The same box-filter coverage as the raster path (hair_shade.glsl): overlap of the strand's cross-section of
+// width w (px) centred at distance d from the pixel centre with the pixel's [-1/2, 1/2].
+float coverage(float d, float w) { return clamp(min(d + 0.5 * w, 0.5) - max(d - 0.5 * w, -0.5), 0.0, 1.0); }

@@ -1,0 +1,145 @@
+// The compute strand rasterizer against its brute-force reference (tressvk/reference/strand_raster.hpp: every
+// fragment kept, sorted per pixel by its own depth, composited front to back in double), on the demo's frame
+// (the same code tressvk-demo runs), on lavapipe with validation and synchronization validation.
+//
+// Targets (issue 9, docs/rendering.md): mean error <= 1/255 and 99th percentile <= 8/255 over the hair pixels.
+// They are the acceptance targets themselves, not tolerances widened to pass: the rasterizer sorts whole segments
+// per tile (by their mid-point depth) instead of single fragments, stops a pixel at alpha >= 1 - 0.5/255 and
+// writes half floats, and those are the differences measured here.
+#include <tressvk/test/vulkan.hpp>
+
+#include "demo_app.hpp"
+
+#include <tressvk/asset_io.hpp>
+#include <tressvk/baker/bake.hpp>
+#include <tressvk/baker/import.hpp>
+#include <tressvk/engine/png.hpp>
+#include <tressvk/reference/strand_raster.hpp>
+
+#include <catch2/catch_test_macros.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+using tressvk::demo::DemoApp;
+using tressvk::demo::Options;
+namespace ref = tressvk::reference;
+
+Options scene_options() {
+  Options o;
+  o.width = 256;
+  o.height = 256;
+  o.animate = tressvk::demo::Animation::none;
+  o.frame_time = 0.0;  // rest pose: the same vertices in every run
+  o.guides = 400;
+  o.follows = 3;
+  return o;
+}
+
+struct Captured {
+  ref::StrandRasterInput input;
+  std::vector<float> vertices, host_depth;
+  ref::HairLayer layer;
+  TvkRasterStats stats{};
+  tressvk::engine::Pixels pixels;
+};
+
+Captured capture(const Options& options, uint32_t flags = 0) {
+  Options o = options;
+  o.raster_flags = TVK_RASTER_CAPTURE | flags;
+  DemoApp app(tressvk::test::device(), o);
+  Captured c;
+  app.run(2, [&](tressvk::demo::FrameReport& f) { c.pixels = std::move(f.pixels); });
+  TvkRasterCapture cap{};
+  REQUIRE(tressvk_get_raster_capture(app.renderer(), &cap) == TVK_SUCCESS);
+  REQUIRE(tressvk_get_raster_stats(app.renderer(), &c.stats) == TVK_SUCCESS);
+  c.vertices.assign(cap.vertices, cap.vertices + size_t{8} * cap.strands * cap.vertices_per_strand);
+  c.host_depth.assign(cap.host_depth, cap.host_depth + size_t{cap.width} * cap.height);
+  c.input = ref::StrandRasterInput{cap.width, cap.height, cap.vertices_per_strand, cap.strands, c.vertices.data(),
+                                   c.host_depth.data()};
+  c.layer = ref::layer_from_half(cap.width, cap.height, cap.layer);
+  return c;
+}
+
+std::filesystem::path out_dir() { return TRESSVK_RENDER_TEST_OUT; }
+
+void check_against_reference(const Captured& c, const std::string& name) {
+  uint64_t fragments = 0;
+  const ref::HairLayer reference = ref::render_strands_reference(c.input, &fragments);
+  const ref::LayerError e = ref::compare_layers(c.layer, reference);
+  tressvk::engine::write_png(out_dir() / (name + ".compute.png"), c.pixels);
+  INFO(name << ": error mean " << e.mean << "/255, p99 " << e.p99 << "/255, max " << e.max << "/255 over "
+            << e.hair_pixels << " hair pixels; " << c.stats.fragments << " fragments composited, " << fragments
+            << " in the reference; dropped entries " << c.stats.dropped_entries << ", dropped slice entries "
+            << c.stats.dropped_slice_entries);
+  CHECK(e.hair_pixels > 1000);  // the hair is there
+  CHECK(e.mean <= 1.0);
+  CHECK(e.p99 <= 8.0);
+  CHECK(c.stats.dropped_entries == 0);
+}
+
+}  // namespace
+
+TEST_CASE("render: compute path matches the sorted reference on the demo scene", "[render][vulkan][compute]") {
+  const Captured c = capture(scene_options());
+  check_against_reference(c, "compute_demo_scene");
+}
+
+TEST_CASE("render: compute path with hair in front of and behind the opaque head", "[render][vulkan][compute]") {
+  // The demo's camera looks at the head with hair on both sides of it: hair behind the head must be hidden by its
+  // depth, hair in front drawn over it. Measured here: the host depth test removes fragments the reference would
+  // otherwise keep, and the image still matches the reference with that test.
+  Options o = scene_options();
+  o.camera_distance = 0.9f;  // close: the head fills the centre and hides much of the back hair
+  const Captured c = capture(o);
+  check_against_reference(c, "compute_front_behind");
+  std::vector<float> no_depth(c.host_depth.size(), 1.0f);
+  ref::StrandRasterInput without = c.input;
+  without.host_depth = no_depth.data();
+  uint64_t with_test = 0, without_test = 0;
+  ref::render_strands_reference(c.input, &with_test);
+  ref::render_strands_reference(without, &without_test);
+  INFO("reference fragments with the host depth test " << with_test << ", without " << without_test);
+  CHECK(with_test < without_test * 9 / 10);  // at least a tenth of the hair is behind the head
+  CHECK(with_test > without_test / 10);      // and plenty of it in front
+}
+
+TEST_CASE("render: compute path is independent of the strand order", "[render][vulkan][compute]") {
+  // The same strands submitted in reversed order: segment indices, atomics, tile lists and sort inputs all come
+  // in another order. Each tile sorts its segments by a total order of their own (depth key, then a key made of
+  // the segment's screen position), so the composite runs in the same order and gives the same bits; the
+  // tolerance (mean 0.01/255, max 0.5/255, half the 8-bit output step) only allows for two different segments
+  // with identical depth and position keys, which were never seen (measured: 0 difference). The raster path's
+  // fringe, blended in strand order, cannot pass this.
+  const Captured forward = capture(scene_options());
+  const Captured reversed = capture(scene_options(), TVK_RASTER_REVERSE_STRANDS);
+  const ref::LayerError e = ref::compare_layers(reversed.layer, forward.layer);
+  INFO("reversed vs forward: mean " << e.mean << "/255, max " << e.max << "/255 over " << e.hair_pixels
+                                    << " hair pixels");
+  CHECK(e.hair_pixels > 1000);
+  CHECK(e.mean <= 0.01);
+  CHECK(e.max <= 0.5);
+}
+
+TEST_CASE("render: compute path matches the sorted reference on the baked Ratboy mohawk", "[render][vulkan][compute]") {
+  const char* env = std::getenv("TRESSVK_DATA_DIR");
+  const std::filesystem::path tfx =
+      std::filesystem::path(env ? env : TRESSVK_DATA_DIR) / "tressfx" / "ratboy" / "Ratboy_mohawk.tfx";
+  if (!std::filesystem::exists(tfx)) SKIP(tfx.string() << " is absent (set TRESSVK_DATA_DIR to the shared data)");
+  const tressvk::baker::RawGroom groom = tressvk::baker::import_tfx(tfx.string());
+  tressvk::baker::BakeOptions bake;
+  bake.vertices_per_strand = 32;
+  bake.follow_per_guide = 2;
+  const std::filesystem::path baked = out_dir() / "ratboy_mohawk.tvkhair";
+  std::filesystem::create_directories(out_dir());
+  REQUIRE(tressvk::asset::write_file(baked.string(), tressvk::baker::bake(groom, bake)).empty());
+  Options o = scene_options();
+  o.asset = baked.string();
+  o.width = 256;
+  o.height = 192;
+  const Captured c = capture(o);
+  check_against_reference(c, "compute_ratboy");
+}
