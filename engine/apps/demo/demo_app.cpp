@@ -65,10 +65,12 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
 
   material_ = TVK_HAIR_MATERIAL_DEFAULT_INIT;
   material_.strand_width = scene_.strand_width;
+  if (scene_.tip_width_ratio >= 0.0f) material_.tip_width_ratio = scene_.tip_width_ratio;
   for (uint32_t i = 0; i < kFramesInFlight; ++i)
     readback_.push_back(engine::create_buffer(device, VkDeviceSize{4} * options.width * options.height,
                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback));
   strands_.assign(kFramesInFlight, 0);
+  view_proj_.assign(kFramesInFlight, glm::dmat4(1.0));
 }
 
 DemoApp::~DemoApp() { device_.wait_idle(); }
@@ -82,6 +84,7 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
     report.shadow_ms = done.timestamps->elapsed_ms(1, 2);
     report.shading_ms = done.timestamps->elapsed_ms(2, 3);
     report.strands_drawn = strands_[done.slot];
+    report.view_proj = view_proj_[done.slot];
     on_frame(report);
   });
   for (uint32_t f = 0; f < frames; ++f) {
@@ -102,11 +105,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   for (int i = 0; i < 3; ++i) sim.transform.translation[i] += options_.world_offset[i];
   sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
   std::copy_n(scene_.capsules.begin(), sim.capsule_count, sim.capsules);
-  const TvkWind wind = TVK_WIND_DEFAULT_INIT;
-  sim.wind = wind;
-  sim.wind.direction[0] = 1.0f;
-  sim.wind.direction[2] = -0.4f;
-  sim.wind.strength = options_.wind;
+  sim.wind = wind_at(options_.animate, t, options_.wind);
   check_tvk(tressvk_set_frame(hair_->instance(), &sim), ctx, "tressvk_set_frame");
   check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
 
@@ -118,7 +117,9 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const double distance = options_.camera_distance > 0.0f
                               ? double{options_.camera_distance}
                               : 0.9 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect));
-  const glm::dvec3 eye = center + glm::normalize(glm::dvec3(0.9, 0.12, 0.75)) * distance;
+  const glm::dvec3 eye =
+      center + glm::normalize(glm::dvec3(scene_.view_direction[0], scene_.view_direction[1], scene_.view_direction[2])) *
+                   distance;
   glm::dmat4 proj = glm::perspectiveRH_ZO(fov, aspect, 0.02 * distance, 10.0 * distance + 4.0 * scene_.radius);
   proj[1][1] *= -1.0;  // Vulkan clip space: +y is down
   SceneFrame sf;
@@ -132,6 +133,8 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
     for (int i = 0; i < 3; ++i) l.position[i] += offset[i];
   sf.ambient = glm::vec3(0.16f, 0.17f, 0.2f);
   sf.shadows = options_.shadows;
+  sf.head_color = scene_.skin_color;
+  view_proj_[frame.slot] = sf.view_proj;
   const TvkLight& key = scene_.lights[0];
   const glm::dvec3 light_dir = glm::normalize(glm::dvec3(key.direction[0], key.direction[1], key.direction[2]));
   const double r = 1.6 * scene_.radius;
@@ -228,7 +231,8 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   di.ambient[1] = sf.ambient.y;
   di.ambient[2] = sf.ambient.z;
   di.shadow = options_.shadows ? &shadow_map : nullptr;
-  check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
+  if (options_.draw_hair)
+    check_tvk(tressvk_cmd_draw_hair(hair_->renderer(), cmd, &di), ctx, "tressvk_cmd_draw_hair");
   strands_[frame.slot] = tressvk_get_last_drawn_strands(hair_->renderer());
   if (flavour_ == PassFlavour::render_pass)
     engine::cmd_end_render_pass(cmd);

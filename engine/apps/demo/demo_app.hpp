@@ -15,6 +15,8 @@
 #include <tressvk/engine/frame_loop.hpp>
 #include <tressvk/engine/image.hpp>
 
+#include <glm/glm.hpp>
+
 #include <functional>
 #include <memory>
 #include <optional>
@@ -27,6 +29,7 @@ struct FrameReport {
   engine::Pixels pixels;
   std::optional<double> simulation_ms, shadow_ms, shading_ms;  // empty when the queue has no timestamps
   uint32_t strands_drawn = 0;
+  glm::dmat4 view_proj{1.0};  // the camera's world -> clip transform of this frame (Vulkan clip space)
 };
 
 enum class PassFlavour { dynamic_rendering, render_pass };
@@ -60,6 +63,7 @@ class DemoApp {
   std::unique_ptr<HairHost> hair_;
   std::vector<engine::Buffer> readback_;  // one per frame slot
   std::vector<uint32_t> strands_;         // strands drawn, per slot
+  std::vector<glm::dmat4> view_proj_;     // camera, per slot
   TvkHairMaterial material_{};
 };
 
