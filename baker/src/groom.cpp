@@ -34,8 +34,9 @@ struct HeadShape {
   // the chin, within the head's width) moves sideways to the face's edge, so strands frame the face.
   Vec3 off_face(const Vec3& p, double side) const {
     const Vec3 d = p - center;
-    const double fx = 0.85 * radii[0];
-    if (d[2] > 0.1 * radii[2] && d[1] < 0.3 * radii[1] && d[1] > -1.6 * radii[1] && std::abs(d[0]) < fx)
+    // Heights in the mean radius: a scalp that is only a cap leaves the fitted height (y radius) uncertain.
+    const double fx = 0.85 * radii[0], rm = (radii[0] + radii[1] + radii[2]) / 3.0;
+    if (d[2] > 0.1 * radii[2] && d[1] < 0.3 * rm && d[1] > -1.6 * rm && std::abs(d[0]) < fx)
       return {center[0] + (side >= 0 ? fx : -fx), p[1], p[2]};
     return p;
   }
@@ -427,7 +428,8 @@ RawGroom grow_groom(const GroomScalp& scalp, const GroomParams& P, GroomReport* 
         offset = offset + (us[k] * a + ws[k] * b) * amp;
       }
       Vec3 q = pts[k] + offset;
-      if (k > 0 && head.valid) q = head.push_out(head.off_face(q, sides[i]), shells[i] * 0.995);
+      if (k > 0 && head.valid)
+        q = head.off_face(head.push_out(head.off_face(q, sides[i]), shells[i] * 0.995), sides[i]);
       out[k] = q;
     }
     out[0] = pts[0];
