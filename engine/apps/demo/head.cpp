@@ -93,7 +93,7 @@ bool in_hair_region(const D3& d) { return d[1] > hairline(d) && !by_ear(d); }
 // The scalp's paint (hair-root colour under the hair), fading out just inside the hairline.
 float scalp_paint(const D3& d) {
   if (by_ear(d)) return 0.0f;
-  return static_cast<float>(smoothstep(0.0, 0.08, d[1] - hairline(d)));
+  return static_cast<float>(0.85 * smoothstep(0.04, 0.2, d[1] - hairline(d)));
 }
 
 engine::MeshVertex vertex(const D3& p, const D3& n) {

@@ -132,8 +132,8 @@ Scene build_scene(const Options& options) {
   scene.radius = std::sqrt(r2);
   if (head_sample) {
     // Frame the head and the hair to the shoulders, not the whole torso.
-    scene.center = {0.0, -0.07, 0.0};
-    scene.radius = 0.25;
+    scene.center = {0.0, -0.06, 0.0};
+    scene.radius = 0.21;
   }
 
   // Strand width from the groom's density: about as wide as the spacing of the strands drawn over the scalp
@@ -195,9 +195,9 @@ TvkWind wind_at(Animation animation, double t, float strength) {
   w.direction[2] = -0.4f;
   w.strength = strength;
   if (animation == Animation::showcase) {
-    // A gust from the front and the camera's right, rising and falling around t = 2.6 s (after the turn starts),
+    // A gust from the front and the camera's right, rising and falling around t = 2.1 s (as the turn ends),
     // on top of any --wind.
-    const double g = std::exp(-std::pow((t - 2.6) / 0.55, 2.0));
+    const double g = std::exp(-std::pow((t - 2.1) / 0.45, 2.0));
     w.direction[0] = -0.35f;
     w.direction[1] = 0.1f;
     w.direction[2] = -1.0f;
@@ -213,8 +213,8 @@ TvkInstanceTransform animate(Animation animation, double t) {
     case Animation::none: break;
     case Animation::turn: yaw = 0.8 * std::sin(2 * kPi * t / 3.0); break;
     case Animation::showcase: {
-      // Still for 0.4 s (the hair settles), then one look to the left and back over 2 s, then still.
-      const double u = std::clamp((t - 0.4) / 2.0, 0.0, 1.0);
+      // Still for 0.3 s (the hair settles), then one look to each side and back over 1.6 s, then still.
+      const double u = std::clamp((t - 0.3) / 1.6, 0.0, 1.0);
       yaw = 0.6 * std::sin(2 * kPi * u) * std::sin(kPi * u);
       break;
     }
