@@ -63,9 +63,23 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
   ri.shadow.depth_format = SceneRenderer::kShadowFormat;
   hair_ = std::make_unique<HairHost>(device, plugin_.get(), scene_.asset_bytes, ri);
 
-  material_ = TVK_HAIR_MATERIAL_DEFAULT_INIT;
-  material_.strand_width = scene_.strand_width;
-  if (scene_.tip_width_ratio >= 0.0f) material_.tip_width_ratio = scene_.tip_width_ratio;
+  // Parameters: the file's where given; the scene's strand width and taper and --wind otherwise.
+  if (!options.params_file.empty()) params_ = load_params(options.params_file);
+  if (!params_.has_wind) {
+    params_.wind.direction[0] = 1.0f;
+    params_.wind.direction[2] = -0.4f;
+    params_.wind.strength = options.wind;
+  }
+  material_ = params_.material;
+  if (!params_.has_strand_width) material_.strand_width = scene_.strand_width;
+  if (!params_.has_tip_width_ratio && scene_.tip_width_ratio >= 0.0f) material_.tip_width_ratio = scene_.tip_width_ratio;
+  params_.material = material_;
+  if (!options.params_file.empty()) {
+    const TvkContext ctx = plugin_.get();
+    for (uint32_t g = 0; g < hair_->info().group_count; ++g)
+      check_tvk(tressvk_set_sim_params(hair_->instance(), g, &params_.simulation), ctx, "tressvk_set_sim_params");
+    check_tvk(tressvk_set_sim_settings(hair_->instance(), &params_.settings), ctx, "tressvk_set_sim_settings");
+  }
   for (uint32_t i = 0; i < kFramesInFlight; ++i)
     readback_.push_back(engine::create_buffer(device, VkDeviceSize{4} * options.width * options.height,
                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback));
@@ -105,7 +119,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   for (int i = 0; i < 3; ++i) sim.transform.translation[i] += options_.world_offset[i];
   sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
   std::copy_n(scene_.capsules.begin(), sim.capsule_count, sim.capsules);
-  sim.wind = wind_at(options_.animate, t, options_.wind);
+  sim.wind = wind_at(options_.animate, t, params_.wind);
   check_tvk(tressvk_set_frame(hair_->instance(), &sim), ctx, "tressvk_set_frame");
   check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
 
@@ -158,6 +172,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   light.orthographic = 1;
   light.width = light.height = kShadowMapSize;
   TvkLodSettings lod{};
+  if (params_.has_lod && options_.lod_start <= 0.0f && params_.lod.end_distance > params_.lod.start_distance) lod = params_.lod;
   if (options_.lod_start > 0.0f && options_.lod_end > options_.lod_start) {
     lod.start_distance = options_.lod_start;
     lod.end_distance = options_.lod_end;

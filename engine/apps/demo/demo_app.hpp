@@ -6,6 +6,7 @@
 #pragma once
 
 #include "demo_options.hpp"
+#include "params.hpp"
 #include "plugin_host.hpp"
 #include "scene.hpp"
 #include "scene_renderer.hpp"
@@ -48,6 +49,8 @@ class DemoApp {
   const Scene& scene() const { return scene_; }
   TvkContext plugin() const { return plugin_.get(); }
   const TvkAssetInfo& asset_info() const { return hair_->info(); }
+  // The parameters in effect (the file's, completed with the scene's and the command line's choices).
+  const Params& params() const { return params_; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -65,6 +68,7 @@ class DemoApp {
   std::vector<uint32_t> strands_;         // strands drawn, per slot
   std::vector<glm::dmat4> view_proj_;     // camera, per slot
   TvkHairMaterial material_{};
+  Params params_;
 };
 
 }  // namespace tressvk::demo

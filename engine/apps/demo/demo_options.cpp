@@ -59,6 +59,9 @@ int parse_options(int argc, char** argv, Options& options) {
                  "Write the sample head (head.obj) and its scalp (scalp.obj, for tressvk-bake groom) into DIR, exit");
   app.add_option("--video", options.video,
                  "Encode the frames into this video file with ffmpeg (instead of a PNG per frame)");
+  app.add_option("--params", options.params_file,
+                 "JSON parameter file: simulation, settings, material, wind, lod (docs/getting-started.md)");
+  app.add_option("--save-params", options.save_params, "Write the parameters in effect to this JSON file");
   app.add_option("--poster", options.poster, "Also write frame --poster-frame as this PNG");
   app.add_option("--poster-frame", options.poster_frame, "0-based frame index for --poster")->capture_default_str();
   app.add_option("--wind", options.wind, "Wind strength in m/s^2 (0 = none)")->check(CLI::Range(0.0f, 1000.0f));

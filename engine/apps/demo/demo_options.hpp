@@ -32,7 +32,9 @@ struct Options {
   std::string video;               // .mp4 (or any container ffmpeg knows): frames piped to ffmpeg, no PNGs
   std::string poster;              // PNG: one frame (--poster-frame) written here as well
   uint32_t poster_frame = 0;       // 0-based frame index for --poster
-  bool draw_hair = true;           // false: the same frame without the hair (tests: what the hair covers)
+  bool draw_hair = true;
+  std::string params_file;         // JSON parameter file (params.hpp): simulation, material, wind, LOD
+  std::string save_params;         // write the parameters in effect to this JSON file           // false: the same frame without the hair (tests: what the hair covers)
   Animation animate = Animation::showcase;
   float wind = 0.0f;   // m/s^2
   bool shadows = true;

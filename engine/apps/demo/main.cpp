@@ -5,6 +5,7 @@
 #include "demo_app.hpp"
 #include "demo_options.hpp"
 #include "head.hpp"
+#include "params.hpp"
 #include "video.hpp"
 
 #include <tressvk/engine/device.hpp>
@@ -75,6 +76,10 @@ int run(const tressvk::demo::Options& options) {
                 app.scene().head.vertices.size() / 3, app.scene().capsules.size(),
                 demo::animation_name(options.animate), static_cast<double>(options.wind),
                 options.shadows ? "on" : "off");
+    if (!options.save_params.empty()) {
+      demo::save_params(options.save_params, app.params());
+      std::printf("parameters: %s\n", std::filesystem::absolute(options.save_params).c_str());
+    }
     TvkMemoryUsage usage{};
     if (tressvk_get_memory_usage(app.plugin(), &usage) == TVK_SUCCESS)
       std::printf("TressVK GPU memory: %u allocation(s), %.2f MB\n", usage.allocation_count,
@@ -138,7 +143,8 @@ int main(int argc, char** argv) {
       std::printf("wrote %s/head.obj and %s/scalp.obj\n", options.export_head.c_str(), options.export_head.c_str());
       return 0;
     }
-    // Before any rendering: a missing encoder is known at once.
+    // Before any rendering: a broken parameter file and a missing encoder are known at once.
+    if (!options.params_file.empty()) (void)tressvk::demo::load_params(options.params_file);
     if (!options.video.empty() && tressvk::demo::find_ffmpeg().empty())
       throw tressvk::demo::FfmpegMissing("--video needs ffmpeg, which is not on PATH: install it (Debian: apt-get "
                                          "install ffmpeg, or ./scripts/setup-deps.sh), or write PNG frames without "

@@ -189,18 +189,18 @@ Scene build_scene(const Options& options) {
   return scene;
 }
 
-TvkWind wind_at(Animation animation, double t, float strength) {
-  TvkWind w = TVK_WIND_DEFAULT_INIT;
-  w.direction[0] = 1.0f;
-  w.direction[2] = -0.4f;
-  w.strength = strength;
+TvkWind wind_at(Animation animation, double t, const TvkWind& base) {
+  TvkWind w = base;
+  const float strength = base.strength;
   if (animation == Animation::showcase) {
     // A gust from the front and the camera's right, rising and falling around t = 2.1 s (as the turn ends),
     // on top of any --wind.
     const double g = std::exp(-std::pow((t - 2.1) / 0.45, 2.0));
-    w.direction[0] = -0.35f;
-    w.direction[1] = 0.1f;
-    w.direction[2] = -1.0f;
+    if (9.0 * g > strength) {  // the gust's direction while it is the stronger
+      w.direction[0] = -0.35f;
+      w.direction[1] = 0.1f;
+      w.direction[2] = -1.0f;
+    }
     w.strength = strength + static_cast<float>(9.0 * g);
   }
   return w;

@@ -34,8 +34,8 @@ struct Scene {
   std::vector<std::array<float, 3>> face_landmarks;
 };
 
-// The frame's wind for the animation at time t (the showcase's gust; otherwise the constant --wind).
-TvkWind wind_at(Animation animation, double t, float strength);
+// The frame's wind for the animation at time t: `base` (the parameter file's, or --wind), plus the showcase's gust.
+TvkWind wind_at(Animation animation, double t, const TvkWind& base);
 
 // Builds the scene the options ask for. Throws engine::Error (naming the file) on unreadable input.
 Scene build_scene(const Options& options);
