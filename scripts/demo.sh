@@ -3,7 +3,7 @@
 #
 # With no arguments it renders the bundled sample (the procedural head with the straight groom: a head turn, then
 # a gust of wind) as a short video plus a poster frame, and prints both paths. Sized to take a few minutes on two
-# CPU cores with Mesa lavapipe: 640x360, 150 frames (2.5 s at 60 frames per second). With arguments, they go to
+# CPU cores with Mesa lavapipe: 480x270, 150 frames (2.5 s at 60 frames per second). With arguments, they go to
 # tressvk-demo instead (`./scripts/demo.sh --help` lists them; e.g. `--frames 240 --video out.mp4`).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -21,7 +21,7 @@ OUT="$ROOT/out/demo"
 mkdir -p "$OUT"
 FRAMES=${TRESSVK_DEMO_FRAMES:-150}
 start=$(date +%s)
-"$DEMO" --frames "$FRAMES" --width 640 --height 360 --guides 1000 --follows 6 \
+"$DEMO" --frames "$FRAMES" --width 480 --height 270 --guides 1000 --follows 6 \
   --video "$OUT/tressvk-demo.mp4" --poster "$OUT/poster.png" --poster-frame $((FRAMES * 126 / 150)) \
   | grep -vE '^frame [0-9]+:'
 echo "demo: rendered $FRAMES frames in $(( $(date +%s) - start )) s"
