@@ -209,12 +209,13 @@ GroomParams groom_preset(std::string_view name) {
     return p;
   }
   if (name == "curly") {
-    // Shoulder-length ringlets: no parting, volume at the root, clumped curls with a little frizz.
+    // Shoulder-length ringlets: no parting, clumped curls with a little frizz (the curls give the volume; a higher
+    // lift stood the hairline up, and the simulation then let those curls fall over the face).
     p.length = 0.24;
     p.length_variation = 0.15;
     p.parting_on = false;
     p.gravity = 0.7;
-    p.lift = 0.6;
+    p.lift = 0.25;
     p.clump = 0.6;
     p.clump_size = 6;
     p.curl_radius = 0.009;
