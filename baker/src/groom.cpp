@@ -267,7 +267,6 @@ RawGroom grow_groom(const GroomScalp& scalp, const GroomParams& P, GroomReport* 
   const Vec3 center = head.valid ? head.center : centroid;
   const Vec3 radii = head.valid ? head.radii : Vec3{1, 1, 1};
   const double total_area = cum.back();
-  const double spacing = std::sqrt(total_area / P.guides);  // mean root spacing of the guides
 
   Random rng(P.seed);
   const uint32_t G = P.guides;
@@ -326,7 +325,7 @@ RawGroom grow_groom(const GroomScalp& scalp, const GroomParams& P, GroomReport* 
     Vec3 tangent = want - r.n * dot(want, r.n);
     tangent = length(tangent) > 1e-9 ? normalized(tangent) : any_perpendicular(r.n);
     Vec3 dir = normalized(r.n * P.lift + tangent * (1.0 - P.lift));
-    // Each strand lies on its own layer over the head: 2..14 % of the root spacing scale of the head's size.
+    // Each strand lies on its own layer over the head, 1 to 5 % (more with lift) of the head's size outside it.
     const double root_size = head.valid ? head.size(r.p) : 1.0;
     shells[i] = std::max(root_size, 1.0) * (1.0 + 0.01 + (0.04 + 0.25 * P.lift * P.lift) * rng.uniform());
     const double ds = lengths[i] / kSteps;
@@ -447,7 +446,6 @@ RawGroom grow_groom(const GroomScalp& scalp, const GroomParams& P, GroomReport* 
     report->head_radius = head.valid ? (radii[0] + radii[1] + radii[2]) / 3.0 : 0.0;
     report->mean_length = total_length / G;
   }
-  (void)spacing;
   return groom;
 }
 
