@@ -4,12 +4,16 @@
 #include <tressvk/baker/bake.hpp>
 #include <tressvk/baker/errors.hpp>
 #include <tressvk/baker/export.hpp>
+#include <tressvk/baker/groom.hpp>
 #include <tressvk/baker/import.hpp>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <clocale>
+#include <cstdlib>
+#include <functional>
+#include <memory>
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
@@ -250,6 +254,77 @@ int run_bake(CliState& s) {
   return kExitOk;
 }
 
+// `tressvk-bake groom`: the preset's values, then every option given on the command line over them.
+struct GroomCli {
+  std::string scalp, preset, output, parting;
+  baker::GroomParams p;
+  std::vector<std::pair<CLI::Option*, std::function<void()>>> overrides;
+};
+
+void add_groom_options(CLI::App& cmd, GroomCli& g) {
+  cmd.add_option("--scalp", g.scalp, "OBJ scalp mesh (metres, +Y up, face towards +Z); vertex colours = length map")
+      ->required();
+  cmd.add_option("--preset", g.preset, "Starting point: straight (shoulder length, side parting) or curly")
+      ->required()->check(CLI::IsMember(baker::groom_preset_names()));
+  cmd.add_option("-o,--output", g.output, "Output .tvkhair (written to a temporary file, then renamed)")->required();
+  auto over = [&](const char* name, auto& field, const char* help, CLI::Validator check) {
+    auto value = std::make_shared<std::decay_t<decltype(field)>>();
+    CLI::Option* o = cmd.add_option(name, *value, help)->check(check);
+    g.overrides.emplace_back(o, [value, &field] { field = *value; });
+  };
+  over("--guides", g.p.guides, "Guide strands", CLI::Range(1u, 200000u));
+  over("--follow", g.p.follow, "Follow hairs per guide", CLI::Range(0u, 64u));
+  over("--vertices", g.p.vertices, "Vertices per strand", CLI::Range(4u, 128u));
+  over("--seed", g.p.seed, "Seed: the same inputs and seed give the same bytes", CLI::NonNegativeNumber);
+  over("--length", g.p.length, "Strand length in metres (times the length map)", CLI::Range(1e-4, 10.0));
+  over("--length-variation", g.p.length_variation, "Random length variation, +- fraction", CLI::Range(0.0, 1.0));
+  cmd.add_option("--parting", g.parting, "Parting x over the scalp's half width (-1..1), or 'none'");
+  over("--gravity", g.p.gravity, "How soon strands fall (0 = keep the combed direction, 1 = straight hair falls)",
+       CLI::Range(0.0, 10.0));
+  over("--lift", g.p.lift, "Root lift off the scalp, 0..1", CLI::Range(0.0, 1.0));
+  over("--clump", g.p.clump, "Clumping at the tips, 0..1", CLI::Range(0.0, 1.0));
+  over("--clump-size", g.p.clump_size, "Guides per clump", CLI::Range(1.0, 1e6));
+  over("--curl-radius", g.p.curl_radius, "Curl radius in metres (0 = straight)", CLI::Range(0.0, 1.0));
+  over("--curl-frequency", g.p.curl_frequency, "Curl turns per metre of strand", CLI::Range(0.0, 1000.0));
+  over("--frizz", g.p.frizz, "Frizz amplitude at the tip in metres", CLI::Range(0.0, 1.0));
+  over("--taper", g.p.taper, "Tip width / root width, recorded for the renderer's material", CLI::Range(0.0, 1.0));
+}
+
+int run_groom(GroomCli& g, bool verbose) {
+  const baker::GroomParams defaults = baker::groom_preset(g.preset);
+  g.p = defaults;
+  for (auto& [option, apply] : g.overrides)
+    if (option->count() > 0) apply();
+  if (!g.parting.empty()) {
+    if (g.parting == "none") {
+      g.p.parting_on = false;
+    } else {
+      char* end = nullptr;
+      const double v = std::strtod(g.parting.c_str(), &end);
+      if (end == g.parting.c_str() || *end != '\0' || !(v >= -1.0 && v <= 1.0)) {
+        std::cerr << "tressvk-bake: error: --parting: '" << g.parting << "' is not a number in -1..1 or 'none'\n";
+        return kExitUsage;
+      }
+      g.p.parting_on = true;
+      g.p.parting = v;
+    }
+  }
+  const baker::GroomScalp scalp = baker::load_groom_scalp(g.scalp);
+  baker::GroomReport rep;
+  const asset::HairAsset a = baker::make_groom(scalp, g.p, g.preset, &rep);
+  const auto problems = asset::validate(a);
+  if (!problems.empty()) throw std::runtime_error("internal error: the groom is inconsistent: " + problems.front());
+  asset::FileInfo info;
+  const auto err = asset::write_file(g.output, a, &info);
+  if (!err.empty()) throw baker::IoError(err);
+  if (verbose)
+    std::cout << "groom " << g.preset << ": " << a.guide_count() << " guides x " << a.vertices_per_strand
+              << " vertices, " << a.follow_per_guide << " follows per guide, on " << rep.scalp_triangles
+              << " scalp triangles (" << rep.scalp_area * 1e4 << " cm^2), mean length " << rep.mean_length
+              << " m, " << info.file_size << " bytes\n";
+  return kExitOk;
+}
+
 int run(int argc, char** argv) {
   CliState s;
   CLI::App app{"tressvk-bake: bakes OBJ polylines and TressFX .tfx hair into .tvkhair assets (metres, +Y up).\n"
@@ -291,6 +366,11 @@ int run(int argc, char** argv) {
   exporter->add_option("FILE", export_file, ".tvkhair file")->required();
   exporter->add_option("-o,--output", export_out, "Output .obj")->required();
   exporter->add_flag("--follow", export_follows, "Include follow hairs");
+  GroomCli groom_cli;
+  bool groom_verbose = false;
+  auto* groom = app.add_subcommand("groom", "Grow hair on a scalp mesh from a preset (deterministic from --seed)");
+  add_groom_options(*groom, groom_cli);
+  groom->add_flag("-v,--verbose", groom_verbose, "Print what was grown");
   app.require_subcommand(0, 1);
 
   try {
@@ -303,6 +383,7 @@ int run(int argc, char** argv) {
     if (info->parsed()) return run_info(info_file, info_json);
     if (validate->parsed()) return run_validate(validate_file);
     if (exporter->parsed()) return run_export(export_file, export_out, export_follows);
+    if (groom->parsed()) return run_groom(groom_cli, groom_verbose);
     return run_bake(s);
   } catch (const baker::IoError& e) {
     std::cerr << "tressvk-bake: error: " << e.what() << "\n";

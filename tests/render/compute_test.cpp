@@ -30,6 +30,7 @@ namespace ref = tressvk::reference;
 
 Options scene_options() {
   Options o;
+  o.sample = tressvk::demo::Sample::sphere;  // the renderer's own scene (the head sample has its poster tests)
   o.width = 256;
   o.height = 256;
   o.animate = tressvk::demo::Animation::none;

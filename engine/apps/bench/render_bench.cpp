@@ -44,10 +44,12 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
       ->capture_default_str();
   c->add_option("--frames", o.frames, "timed frames")->check(CLI::Range(1u, 100000u))->capture_default_str();
   c->add_option("--warmup", o.warmup, "frames before timing")->capture_default_str();
-  c->add_option("--guides", o.guides, "bundled groom: guides")->check(CLI::Range(16u, 1000000u))->capture_default_str();
-  c->add_option("--follows", o.follows, "bundled groom: follows per guide")->check(CLI::Range(0u, 16u))
+  c->add_option("--sample", o.sample, "no --asset: the bundled head sample, or the sphere sample (long128 groom)")
+      ->check(CLI::IsMember({"head", "sphere"}))->capture_default_str();
+  c->add_option("--guides", o.guides, "sphere sample: guides")->check(CLI::Range(16u, 1000000u))->capture_default_str();
+  c->add_option("--follows", o.follows, "sphere sample: follows per guide")->check(CLI::Range(0u, 16u))
       ->capture_default_str();
-  c->add_option("--vertices", o.vertices, "bundled groom: vertices per strand")->check(CLI::Range(4u, 128u))
+  c->add_option("--vertices", o.vertices, "sphere sample: vertices per strand")->check(CLI::Range(4u, 128u))
       ->capture_default_str();
   c->add_option("--lod-fraction", o.lod_fraction, "draw this fraction of the strands, widened to keep coverage")
       ->check(CLI::Range(0.01f, 1.0f));
@@ -81,11 +83,13 @@ int run_render_bench(const RenderBenchOptions& o) {
                                                       {"shake", demo::Animation::shake},
                                                       {"run", demo::Animation::run}};
     d.animate = anim.at(o.animate);
-    std::string groom = o.asset.empty() ? "bundled sample" : std::filesystem::path(o.asset).filename().string();
+    d.sample = o.sample == "sphere" ? demo::Sample::sphere : demo::Sample::head;
+    std::string groom = o.asset.empty() ? (o.sample == "sphere" ? "sphere sample" : "bundled head sample")
+                                        : std::filesystem::path(o.asset).filename().string();
     std::filesystem::path temp;
     if (!o.asset.empty()) {
       d.asset = o.asset;
-    } else if (o.vertices != 48) {
+    } else if (d.sample == demo::Sample::sphere && o.vertices != 48) {
       // The demo builds its bundled groom with 48 vertices; other counts go through a baked file (no head mesh).
       baker::BuiltinGroomOptions g;
       g.guide_count = o.guides;

@@ -17,7 +17,8 @@ struct RenderBenchOptions {
   std::string path = "compute";  // compute or raster
   uint32_t frames = 30;         // timed frames, back to back
   uint32_t warmup = 10;
-  uint32_t guides = 1200, follows = 7, vertices = 48;  // the bundled groom
+  std::string sample = "head";  // no --asset: the bundled head sample, or the sphere sample (long128 groom)
+  uint32_t guides = 1200, follows = 7, vertices = 48;  // the sphere sample's groom
   float lod_fraction = 1.0f;    // < 1: coverage-preserving LOD down to this fraction of the strands
   std::string animate = "turn";
   std::string json, png, device;

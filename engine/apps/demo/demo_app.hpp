@@ -8,6 +8,7 @@
 #pragma once
 
 #include "demo_options.hpp"
+#include "params.hpp"
 #include "plugin_host.hpp"
 #include "scene.hpp"
 #include "scene_renderer.hpp"
@@ -16,6 +17,8 @@
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/frame_loop.hpp>
 #include <tressvk/engine/image.hpp>
+
+#include <glm/glm.hpp>
 
 #include <functional>
 #include <memory>
@@ -30,6 +33,7 @@ struct FrameReport {
   std::optional<double> simulation_ms, shadow_ms, shading_ms;  // empty when the queue has no timestamps
   std::optional<double> hair_shadow_ms, hair_ms;  // the hair calls alone (inside the shadow and shading times)
   uint32_t strands_drawn = 0;
+  glm::dmat4 view_proj{1.0};  // the camera's world -> clip transform of this frame (Vulkan clip space)
 };
 
 enum class PassFlavour { dynamic_rendering, render_pass };
@@ -51,6 +55,8 @@ class DemoApp {
   TvkRenderer renderer() const { return hair_->renderer(); }
   // TVK_RASTER_* flags of the compute path for the frames recorded from now on (tressvk-bench, tests).
   void set_raster_flags(uint32_t flags) { options_.raster_flags = flags; }
+  // The parameters in effect (the file's, completed with the scene's and the command line's choices).
+  const Params& params() const { return params_; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -67,7 +73,9 @@ class DemoApp {
   std::unique_ptr<HairHost> hair_;
   std::vector<engine::Buffer> readback_;  // one per frame slot
   std::vector<uint32_t> strands_;         // strands drawn, per slot
+  std::vector<glm::dmat4> view_proj_;     // camera, per slot
   TvkHairMaterial material_{};
+  Params params_;
 };
 
 }  // namespace tressvk::demo

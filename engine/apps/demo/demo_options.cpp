@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <map>
 #include <vector>
 
@@ -13,13 +14,14 @@ const char* animation_name(Animation a) {
     case Animation::turn: return "turn";
     case Animation::shake: return "shake";
     case Animation::run: return "run";
+    case Animation::showcase: return "showcase";
   }
   return "?";
 }
 
 int parse_options(int argc, char** argv, Options& options) {
   CLI::App app{"tressvk-demo: renders a head of simulated hair offscreen with the TressVK plugin and writes the "
-               "frames as PNG files"};
+               "frames as PNG files or a video.\nExit codes: 0 ok, 1 error (the message says which), 3 --video without ffmpeg."};
   app.add_option("--frames", options.frames, "Number of frames to render (60 per simulated second)")
       ->check(CLI::Range(1u, 100000u));
   app.add_option("--out", options.out_dir, "Output directory for frame_NNNN.png")->capture_default_str();
@@ -40,10 +42,28 @@ int parse_options(int argc, char** argv, Options& options) {
                  "Uniform scale from the OBJ's units to metres (bake the hair with the same tressvk-bake --scale)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   const std::map<std::string, Animation> animations{
-      {"none", Animation::none}, {"turn", Animation::turn}, {"shake", Animation::shake}, {"run", Animation::run}};
-  app.add_option("--animate", options.animate, "Head motion: none, turn, shake or run")
+      {"none", Animation::none}, {"turn", Animation::turn}, {"shake", Animation::shake}, {"run", Animation::run},
+      {"showcase", Animation::showcase}};
+  app.add_option("--animate", options.animate,
+                 "Motion: showcase (head turn, then a gust of wind from the front), none, turn, shake or run")
       ->transform(CLI::CheckedTransformer(animations, CLI::ignore_case))
-      ->default_str("turn");
+      ->default_str("showcase");
+  const std::map<std::string, Sample> samples{{"head", Sample::head}, {"sphere", Sample::sphere}};
+  app.add_option("--sample", options.sample,
+                 "Bundled sample without --asset: head (a face, groom grown on its scalp) or sphere (long128 groom)")
+      ->transform(CLI::CheckedTransformer(samples, CLI::ignore_case))
+      ->default_str("head");
+  app.add_option("--groom", options.groom, "Bundled head: groom preset (straight or curly, as tressvk-bake groom)")
+      ->check(CLI::IsMember({"straight", "curly"}))->capture_default_str();
+  app.add_option("--export-head", options.export_head,
+                 "Write the sample head (head.obj) and its scalp (scalp.obj, for tressvk-bake groom) into DIR, exit");
+  app.add_option("--video", options.video,
+                 "Encode the frames into this video file with ffmpeg (instead of a PNG per frame)");
+  app.add_option("--params", options.params_file,
+                 "JSON parameter file: simulation, settings, material, wind, lod (docs/getting-started.md)");
+  app.add_option("--save-params", options.save_params, "Write the parameters in effect to this JSON file");
+  app.add_option("--poster", options.poster, "Also write frame --poster-frame as this PNG");
+  app.add_option("--poster-frame", options.poster_frame, "0-based frame index for --poster")->capture_default_str();
   app.add_option("--wind", options.wind, "Wind strength in m/s^2 (0 = none)")->check(CLI::Range(0.0f, 1000.0f));
   const std::map<std::string, HairPath> paths{{"compute", HairPath::compute}, {"raster", HairPath::raster}};
   app.add_option("--path", options.hair_path,
@@ -74,6 +94,11 @@ int parse_options(int argc, char** argv, Options& options) {
     return app.exit(e);
   }
   options.shadows = !no_shadows;
+  if (!options.poster.empty() && options.poster_frame >= options.frames) {
+    std::fprintf(stderr, "tressvk-demo: error: --poster-frame %u is not below --frames %u\n", options.poster_frame,
+                 options.frames);
+    return 1;
+  }
   return -1;
 }
 

@@ -7,10 +7,15 @@
 
 namespace tressvk::demo {
 
-enum class Animation { none, turn, shake, run };
+// showcase: a head turn and then a gust of wind from the front (the default: what the sample is made to show).
+enum class Animation { none, turn, shake, run, showcase };
 // How the hair is drawn: the compute strand rasterizer (tressvk_cmd_raster_hair + tressvk_cmd_composite_hair) or
 // the raster path of quads in the host's pass (tressvk_cmd_draw_hair).
 enum class HairPath { compute, raster };
+
+// The bundled sample when no --asset is given: the procedural head with a face and a groom grown on its scalp,
+// or the older sphere head with the long128 groom (kept for the renderer's golden images).
+enum class Sample { head, sphere };
 
 struct Options {
   uint32_t frames = 1;
@@ -24,7 +29,16 @@ struct Options {
   std::string asset;   // .tvkhair file; empty: the bundled procedural groom on the procedural head
   std::string mesh;    // OBJ head/character mesh (in the asset's space); empty: procedural head if bundled
   float mesh_scale = 1.0f;  // OBJ units to metres (bake the hair with the same --scale)
-  Animation animate = Animation::turn;
+  Sample sample = Sample::head;
+  std::string groom = "straight";  // bundled head: groom generator preset (tressvk-bake groom --preset)
+  std::string export_head;         // directory: write the sample head.obj and scalp.obj there and exit
+  std::string video;               // .mp4 (or any container ffmpeg knows): frames piped to ffmpeg, no PNGs
+  std::string poster;              // PNG: one frame (--poster-frame) written here as well
+  uint32_t poster_frame = 0;       // 0-based frame index for --poster
+  bool draw_hair = true;           // false: the same frame without the hair (tests: what the hair covers)
+  std::string params_file;         // JSON parameter file (params.hpp): simulation, material, wind, LOD
+  std::string save_params;         // write the parameters in effect to this JSON file
+  Animation animate = Animation::showcase;
   float wind = 0.0f;   // m/s^2
   bool shadows = true;
   HairPath hair_path = HairPath::compute;  // --path

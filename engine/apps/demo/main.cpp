@@ -4,6 +4,9 @@
 // passes, and writes the frames as PNG files with per-frame GPU times.
 #include "demo_app.hpp"
 #include "demo_options.hpp"
+#include "head.hpp"
+#include "params.hpp"
+#include "video.hpp"
 
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/png.hpp>
@@ -73,6 +76,10 @@ int run(const tressvk::demo::Options& options) {
                 app.scene().head.vertices.size() / 3, app.scene().capsules.size(),
                 demo::animation_name(options.animate), static_cast<double>(options.wind),
                 options.shadows ? "on" : "off");
+    if (!options.save_params.empty()) {
+      demo::save_params(options.save_params, app.params());
+      std::printf("parameters: %s\n", std::filesystem::absolute(options.save_params).c_str());
+    }
     TvkMemoryUsage usage{};
     if (tressvk_get_memory_usage(app.plugin(), &usage) == TVK_SUCCESS)
       std::printf("TressVK GPU memory: %u allocation(s), %.2f MB\n", usage.allocation_count,
@@ -80,8 +87,16 @@ int run(const tressvk::demo::Options& options) {
 
     const std::filesystem::path out_dir = std::filesystem::absolute(options.out_dir);
     std::vector<double> sim_ms, shadow_ms, shading_ms;
+    std::unique_ptr<demo::VideoWriter> video;
+    if (!options.video.empty())
+      video = std::make_unique<demo::VideoWriter>(options.video, options.width, options.height,
+                                                  options.frame_time > 0 ? 1.0 / options.frame_time : 60.0);
     app.run(options.frames, [&](demo::FrameReport& frame) {
-      engine::write_png(out_dir / frame_name(frame.index), frame.pixels);
+      if (video)
+        video->write(frame.pixels);
+      else
+        engine::write_png(out_dir / frame_name(frame.index), frame.pixels);
+      if (!options.poster.empty() && frame.index == options.poster_frame) engine::write_png(options.poster, frame.pixels);
       if (frame.simulation_ms && frame.shadow_ms && frame.shading_ms) {
         std::printf("frame %u: GPU simulation %.3f ms, shadow %.3f ms, shading %.3f ms (%u strands drawn)\n",
                     frame.index, *frame.simulation_ms, *frame.shadow_ms, *frame.shading_ms, frame.strands_drawn);
@@ -97,8 +112,15 @@ int run(const tressvk::demo::Options& options) {
       std::printf("GPU time per frame (median of %zu): simulation %.3f ms, shadow %.3f ms, shading %.3f ms\n",
                   sim_ms.size(), median(sim_ms), median(shadow_ms), median(shading_ms));
     device.wait_idle();
-    std::printf("wrote %u frame(s) of %ux%u to %s\n", options.frames, options.width, options.height,
-                out_dir.c_str());
+    if (video) {
+      video->finish();
+      std::printf("video: %s\n", std::filesystem::absolute(options.video).c_str());
+    } else {
+      std::printf("wrote %u frame(s) of %ux%u to %s\n", options.frames, options.width, options.height,
+                  out_dir.c_str());
+    }
+    if (!options.poster.empty())
+      std::printf("poster: %s\n", std::filesystem::absolute(options.poster).c_str());
   }
   device_owner.reset();  // destruction is validated too (leaked objects are reported here)
   if (options.validation) {
@@ -116,7 +138,21 @@ int main(int argc, char** argv) {
   if (const int code = tressvk::demo::parse_options(argc, argv, options); code >= 0) return code;
   try {
     if (options.list_devices) return list_devices();
+    if (!options.export_head.empty()) {
+      tressvk::demo::export_sample_head(tressvk::demo::make_sample_head(), options.export_head);
+      std::printf("wrote %s/head.obj and %s/scalp.obj\n", options.export_head.c_str(), options.export_head.c_str());
+      return 0;
+    }
+    // Before any rendering: a broken parameter file and a missing encoder are known at once.
+    if (!options.params_file.empty()) (void)tressvk::demo::load_params(options.params_file);
+    if (!options.video.empty() && tressvk::demo::find_ffmpeg().empty())
+      throw tressvk::demo::FfmpegMissing("--video needs ffmpeg, which is not on PATH: install it (Debian: apt-get "
+                                         "install ffmpeg, or ./scripts/setup-deps.sh), or write PNG frames without "
+                                         "--video");
     return run(options);
+  } catch (const tressvk::demo::FfmpegMissing& e) {
+    std::fprintf(stderr, "tressvk-demo: error: %s\n", e.what());
+    return 3;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tressvk-demo: error: %s\n", e.what());
     return 1;

@@ -1,6 +1,9 @@
 #include "scene.hpp"
 
+#include "head.hpp"
+
 #include <tressvk/asset_io.hpp>
+#include <tressvk/baker/groom.hpp>
 #include <tressvk/baker/import.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/check.hpp>
@@ -63,7 +66,26 @@ void add_capsule(Scene& scene, std::array<float, 3> p0, float r0, std::array<flo
 Scene build_scene(const Options& options) {
   Scene scene;
   asset::HairAsset hair;
-  if (options.asset.empty()) {
+  const bool head_sample = options.asset.empty() && options.sample == Sample::head;
+  if (head_sample) {
+    // The bundled sample: the procedural head with a face, and hair grown on its scalp by the groom generator
+    // (what `tressvk-bake groom --scalp scalp.obj --preset NAME` does with the exported scalp).
+    SampleHead head = make_sample_head();
+    baker::GroomParams groom = baker::groom_preset(options.groom);
+    groom.guides = options.guides;
+    groom.follow = options.follows;
+    hair = baker::make_groom(head.scalp, groom, options.groom);
+    scene.asset_name = "bundled head, " + options.groom + " groom (" + std::to_string(groom.guides) +
+                       " guides x " + std::to_string(1 + groom.follow) + ")";
+    scene.asset_bytes = asset::write(hair);
+    scene.tip_width_ratio = static_cast<float>(groom.taper);
+    scene.head = std::move(head.skin);
+    scene.head.append(head.eyes);
+    scene.capsules = head.colliders;
+    scene.face_landmarks = {head.left_eye, head.right_eye, head.nose_tip, head.mouth, head.chin, head.brow};
+    scene.view_direction = {0.42, 0.1, 1.0};
+    scene.skin_color = {0.5f, 0.32f, 0.24f};
+  } else if (options.asset.empty()) {
     // The bundled sample: long hair grown on the procedural head sphere (r = 0.1 m at the origin), made in memory.
     baker::BuiltinGroomOptions groom;
     groom.guide_count = options.guides;
@@ -88,7 +110,7 @@ Scene build_scene(const Options& options) {
     for (engine::MeshVertex& v : scene.head.vertices)
       for (int i = 0; i < 3; ++i) v.position[i] *= options.mesh_scale;
     scene.capsules.push_back(fit_capsule(engine::mesh_bounds(scene.head)));
-  } else if (options.asset.empty()) {
+  } else if (options.asset.empty() && !head_sample) {
     // Head sphere (the scalp the groom grows on, a hair's breadth inside it), neck and nose; the colliders are
     // the same capsules.
     add_capsule(scene, {0, 0, 0}, 0.099f, {0, 0, 0}, 0.099f, true);
@@ -108,6 +130,11 @@ Scene build_scene(const Options& options) {
     r2 += 0.25 * (hi[i] - lo[i]) * (hi[i] - lo[i]);
   }
   scene.radius = std::sqrt(r2);
+  if (head_sample) {
+    // Frame the head and the hair to the shoulders, not the whole torso.
+    scene.center = {0.0, -0.06, 0.0};
+    scene.radius = 0.21;
+  }
 
   // Strand width from the groom's density: about as wide as the spacing of the strands drawn over the scalp
   // would need to cover it twice, kept between 0.15 mm and 1.2 mm.
@@ -129,6 +156,7 @@ Scene build_scene(const Options& options) {
   scene.strand_width = static_cast<float>(std::clamp(0.35 * spacing, 0.00015, 0.002));
 
   // Floor a little below the lowest point.
+  if (head_sample) scene.strand_width = std::min(scene.strand_width, 0.0005f);
   const float floor_y = static_cast<float>(lo[1] - 0.05 * scene.radius);
   scene.floor = engine::make_floor_mesh(
       {static_cast<float>(scene.center[0]), floor_y, static_cast<float>(scene.center[2])},
@@ -151,7 +179,31 @@ Scene build_scene(const Options& options) {
   fill.outer_cone = 0.6f;
   scene.lights.push_back(fill);
   scene.lights.push_back(directional({0.2f, -0.3f, 1.0f}, {0.6f, 0.7f, 1.0f}, 0.9f, false));
+  if (head_sample) {
+    // Three-point light for the face: key from above the camera's left, a weaker warm fill from its right, a
+    // strong cool rim from behind and above that outlines the hair.
+    scene.lights[0] = directional({0.55f, -0.6f, -0.7f}, {1.0f, 0.95f, 0.88f}, 2.0f, options.shadows);
+    scene.lights[1].intensity *= 0.55f;
+    scene.lights[2] = directional({-0.35f, -0.5f, 1.0f}, {0.65f, 0.75f, 1.0f}, 1.8f, false);
+  }
   return scene;
+}
+
+TvkWind wind_at(Animation animation, double t, const TvkWind& base) {
+  TvkWind w = base;
+  const float strength = base.strength;
+  if (animation == Animation::showcase) {
+    // A gust from the front and the camera's right, rising and falling around t = 2.1 s (as the turn ends),
+    // on top of any --wind.
+    const double g = std::exp(-std::pow((t - 2.1) / 0.45, 2.0));
+    if (9.0 * g > strength) {  // the gust's direction while it is the stronger
+      w.direction[0] = -0.35f;
+      w.direction[1] = 0.1f;
+      w.direction[2] = -1.0f;
+    }
+    w.strength = strength + static_cast<float>(9.0 * g);
+  }
+  return w;
 }
 
 TvkInstanceTransform animate(Animation animation, double t) {
@@ -160,6 +212,12 @@ TvkInstanceTransform animate(Animation animation, double t) {
   switch (animation) {
     case Animation::none: break;
     case Animation::turn: yaw = 0.8 * std::sin(2 * kPi * t / 3.0); break;
+    case Animation::showcase: {
+      // Still for 0.3 s (the hair settles), then one look to each side and back over 1.6 s, then still.
+      const double u = std::clamp((t - 0.3) / 1.6, 0.0, 1.0);
+      yaw = 0.6 * std::sin(2 * kPi * u) * std::sin(kPi * u);
+      break;
+    }
     case Animation::shake: yaw = 0.45 * std::sin(2 * kPi * 2.5 * t); break;
     case Animation::run:
       x.translation[0] = 2.5 * t;

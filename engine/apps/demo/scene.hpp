@@ -7,6 +7,8 @@
 #include <tressvk/engine/mesh.hpp>
 #include <tressvk/tressvk.h>
 
+#include <glm/glm.hpp>
+
 #include <array>
 #include <cstddef>
 #include <string>
@@ -25,7 +27,15 @@ struct Scene {
   double radius = 0.5;                  // m, bounding radius of hair + head around `center`
   float strand_width = 0.0006f;         // m, scaled with the groom
   float hair_length = 0.5f;             // m, median strand length (scale for everything relative)
+  float tip_width_ratio = -1.0f;        // the groom's taper when it records one (< 0: the material default)
+  std::array<double, 3> view_direction{0.9, 0.12, 0.75};  // from the framed centre towards the camera
+  glm::vec3 skin_color{0.45f, 0.32f, 0.26f};
+  // The bundled head's face (instance space): eyes, nose tip, mouth, chin, brow. Empty for other scenes.
+  std::vector<std::array<float, 3>> face_landmarks;
 };
+
+// The frame's wind for the animation at time t: `base` (the parameter file's, or --wind), plus the showcase's gust.
+TvkWind wind_at(Animation animation, double t, const TvkWind& base);
 
 // Builds the scene the options ask for. Throws engine::Error (naming the file) on unreadable input.
 Scene build_scene(const Options& options);

@@ -152,7 +152,7 @@ void SceneRenderer::cmd_draw_shadow(VkCommandBuffer cmd, uint32_t slot, const Sc
 
 void SceneRenderer::cmd_draw(VkCommandBuffer cmd, uint32_t slot, const SceneFrame& frame) const {
   const glm::dmat4 to_eye = glm::translate(glm::dmat4(1.0), -frame.eye);
-  draw_mesh(cmd, mesh_, sets_[slot][0], to_eye * frame.head_model, glm::vec4(0.45f, 0.32f, 0.26f, 0.1f), head_count_);
+  draw_mesh(cmd, mesh_, sets_[slot][0], to_eye * frame.head_model, glm::vec4(frame.head_color, 0.1f), head_count_);
   draw_mesh(cmd, mesh_, sets_[slot][1], to_eye * frame.floor_model, glm::vec4(0.16f, 0.165f, 0.18f, 0.02f),
             floor_count_);
 }

@@ -28,6 +28,7 @@ struct SceneFrame {
   std::vector<TvkLight> lights;
   glm::vec3 ambient{0.0f};
   bool shadows = true;
+  glm::vec3 head_color{0.45f, 0.32f, 0.26f};  // the head mesh's albedo (skin)
 };
 
 class SceneRenderer {

@@ -8,6 +8,7 @@ layout(set = 0, binding = 2) uniform sampler2DShadow shadow_map;
 
 layout(location = 0) in vec3 i_world;
 layout(location = 1) in vec3 i_normal;
+layout(location = 2) in float i_paint;
 layout(location = 0) out vec4 o_color;
 
 float shadow_factor(vec3 p, vec3 n, vec3 l) {
@@ -28,7 +29,10 @@ float shadow_factor(vec3 p, vec3 n, vec3 l) {
 void main() {
   const vec3 n = normalize(i_normal);
   const vec3 v = normalize(scene.eye.xyz - i_world);
-  vec3 color = scene.ambient.rgb * pc.color.rgb;
+  // Painted vertices (the sample head's scalp) take a dark hair-root brown, so the skin under the hair does not
+  // shine through it.
+  const vec3 albedo = mix(pc.color.rgb, vec3(0.05, 0.028, 0.016), clamp(i_paint, 0.0, 1.0));
+  vec3 color = scene.ambient.rgb * albedo;
   for (uint i = 0u; i < scene.counts.x; ++i) {
     vec3 l;
     float attenuation = 1.0;
@@ -46,7 +50,7 @@ void main() {
     if (scene.light_color[i].w > 0.5) attenuation *= shadow_factor(i_world, n, l);
     const vec3 h = normalize(l + v);
     const float spec = pc.color.w * pow(max(dot(n, h), 0.0), 40.0);
-    color += (pc.color.rgb * ndl + spec) * scene.light_color[i].rgb * attenuation;
+    color += (albedo * ndl + spec * (1.0 - 0.8 * i_paint)) * scene.light_color[i].rgb * attenuation;
   }
   o_color = vec4(color, 1.0);
 }

@@ -5,10 +5,13 @@
 
 layout(location = 0) out vec3 o_world;
 layout(location = 1) out vec3 o_normal;
+layout(location = 2) out float o_paint;
 
 void main() {
   const vec4 p = pc.model * vec4(vertex_data[2 * gl_VertexIndex].xyz, 1.0);
   o_world = p.xyz;
-  o_normal = mat3(pc.model) * vertex_data[2 * gl_VertexIndex + 1].xyz;  // rigid transforms only
+  const vec4 n = vertex_data[2 * gl_VertexIndex + 1];
+  o_normal = mat3(pc.model) * n.xyz;  // rigid transforms only
+  o_paint = n.w;                      // 0..1: painted with the hair-root colour (the sample head's scalp)
   gl_Position = scene.view_proj * p;
 }

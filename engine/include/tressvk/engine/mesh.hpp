@@ -11,7 +11,7 @@ namespace tressvk::engine {
 
 struct MeshVertex {
   float position[4];  // xyz, w = 1
-  float normal[4];    // xyz unit, w = 0
+  float normal[4];    // xyz unit; w: paint 0..1 (the demo's mesh shader blends in a hair-root colour), usually 0
 };
 
 struct Mesh {
