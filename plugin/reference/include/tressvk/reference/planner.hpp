@@ -115,6 +115,11 @@ class FramePlanner {
   std::vector<CapsuleSim> last_caps_;  // capsules of the last planned step (its frame)
 };
 
+// Checks every host number of a frame: dt, the transform, bone matrices, capsules and wind must be finite, rotations
+// (near-)unit quaternions, radii >= 0, counts within limits. Throws std::invalid_argument naming the field (e.g.
+// "capsules[1].r0 is not finite"). asset_bone_count: the asset's bones (0 = rigid only).
+void validate_frame(const TvkSimFrame& frame, uint32_t asset_bone_count);
+
 // Per-group parameters converted to per-step values for step length h (what both sides use).
 struct GroupStep {
   double velocity_keep = 1;    // exp(-damping * h * 60)
