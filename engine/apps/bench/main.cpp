@@ -4,6 +4,7 @@
 //   tressvk-bench compare --builtin curly --scene shake --frames 300 --json out.json
 //   tressvk-bench compare --asset mohawk.tvkhair --scene run
 #include "bench.hpp"
+#include "run_bench.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
@@ -120,7 +121,10 @@ int main(int argc, char** argv) {
   compare->add_flag("--table-row", table_row, "print one Markdown table row instead of the report");
   bool validation = false;
   compare->add_flag("--validation", validation, "enable the Vulkan validation layer");
+  bench::RunCommand run_command;
+  bench::add_run_command(app, run_command);
   CLI11_PARSE(app, argc, argv);
+  if (run_command.app->parsed()) return bench::execute_run_command(run_command);
 
   o.trajectory = !no_trajectory;
   try {
