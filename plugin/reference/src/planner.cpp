@@ -88,15 +88,18 @@ void validate_frame(const TvkSimFrame& frame, uint32_t asset_bone_count) {
   require(std::isfinite(w.cone_angle), "wind.cone_angle is not finite");
 }
 
-FramePlanner::FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count)
-    : settings_(settings), asset_origin_(asset_origin), bone_count_(bone_count) {
+FramePlanner::FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count,
+                           const PlannerLimits& limits)
+    : settings_(settings), limits_(limits), asset_origin_(asset_origin), bone_count_(bone_count) {
   set_settings(settings);
 }
 
 void FramePlanner::set_settings(const TvkSimSettings& settings) {
-  require(std::isfinite(settings.time.step_rate) && settings.time.step_rate >= 30.0f && settings.time.step_rate <= 480.0f,
-          "time.step_rate must be within 30..480 Hz");
-  require(settings.time.max_steps_per_frame >= 1 && settings.time.max_steps_per_frame <= TVK_MAX_STEPS_PER_FRAME,
+  require(std::isfinite(settings.time.step_rate) && settings.time.step_rate >= 30.0f &&
+              static_cast<double>(settings.time.step_rate) <= limits_.max_step_rate,
+          limits_.max_step_rate == 480.0 ? "time.step_rate must be within 30..480 Hz"
+                                         : "time.step_rate must be within 30 Hz..the planner's limit");
+  require(settings.time.max_steps_per_frame >= 1 && settings.time.max_steps_per_frame <= limits_.max_steps_per_frame,
           "time.max_steps_per_frame must be within 1..TVK_MAX_STEPS_PER_FRAME");
   for (float g : settings.gravity) require(std::isfinite(g), "gravity is not finite");
   settings_ = settings;

@@ -58,35 +58,56 @@ TEST_CASE("analytic: damping alone sets the chain's decay", "[reference][analyti
 
 // A3. The discrete catenary is an equilibrium of the chain pinned at both ends: after 10 s it has not moved by more
 // than 1e-3 L, no segment is stretched by more than 1 %, and the sag is within 1 %.
-// Known to fail: the final follow-the-leader sweep breaks the segment next to the pinned tip (335 % stretch at
-// 240 Hz). [!shouldfail] until that sweep respects a pinned tip.
-TEST_CASE("analytic: a strand pinned at both ends hangs as the catenary", "[reference][analytic][!shouldfail]") {
+// A3. The discrete catenary (N 32, L 0.3 m, supports 0.25 m apart, sag 0.0730 m) is an equilibrium of the chain
+// pinned at both ends. Run 10 s from it (damping 0.08 to settle what the scheme moves).
+struct CatenaryRun {
+  double drift = 0, stretch = 0, sag = 0;
+};
+static CatenaryRun catenary_run(double rate) {
   const Catenary cat = discrete_catenary(32, 0.3, 0.25);
   TvkSimParams p = chain_params();
   p.damping = 0.08f;
+  auto run = reference_factory()(strand_asset(cat.pts, 1, true), p, settings_at(rate));
+  std::vector<Vec3> first, last;
+  CatenaryRun r;
+  for (uint32_t f = 0; f < 600; ++f) {
+    run->frame(still_frame());
+    last = run->positions();
+    if (f == 0) first = last;
+    for (size_t i = 0; i + 1 < last.size(); ++i) {  // every frame: the worst moment counts
+      const double l0 = length(cat.pts[i + 1] - cat.pts[i]);
+      r.stretch = std::max(r.stretch, std::abs(length(last[i + 1] - last[i]) / l0 - 1.0));
+    }
+  }
+  double low = 1e300;
+  for (size_t i = 0; i < last.size(); ++i) {
+    r.drift = std::max(r.drift, length(last[i] - first[i]));
+    low = std::min(low, last[i].y);
+  }
+  r.sag = last.front().y - low;
+  return r;
+}
+
+// Stretch <= 1 % in every frame: every segment, including the one next to the pinned tip, at its length. With the
+// root-to-tip follow-the-leader sweep that segment ended 335 % stretched (240 Hz); followed from both ends, the
+// segments beside the middle reached 170 % while the halves slid.
+TEST_CASE("analytic: a strand pinned at both ends keeps its segment lengths", "[reference][analytic]") {
   for (double rate : {240.0, 480.0}) {
-    auto run = reference_factory()(strand_asset(cat.pts, 1, true), p, settings_at(rate));
-    std::vector<Vec3> first;
-    for (uint32_t f = 0; f < 600; ++f) {
-      run->frame(still_frame());
-      if (f == 0) first = run->positions();
-    }
-    const std::vector<Vec3> last = run->positions();
-    double drift = 0, stretch = 0, low = 1e300, top = last.front().y;
-    for (size_t i = 0; i < last.size(); ++i) {
-      drift = std::max(drift, length(last[i] - first[i]));
-      low = std::min(low, last[i].y);
-      if (i + 1 < last.size()) {
-        const double l0 = length(cat.pts[i + 1] - cat.pts[i]);
-        stretch = std::max(stretch, std::abs(length(last[i + 1] - last[i]) / l0 - 1.0));
-      }
-    }
-    const double sag = top - low;
-    INFO("rate " << rate << " drift " << drift / 0.3 << " L, stretch " << stretch << ", sag " << sag << " (expected "
-                 << cat.sag << ")");
-    CHECK(drift <= 1e-3 * 0.3);
-    CHECK(stretch <= 0.01);
-    CHECK(std::abs(sag / cat.sag - 1.0) <= 0.01);
+    const CatenaryRun r = catenary_run(rate);
+    INFO("rate " << rate << " stretch " << r.stretch);
+    CHECK(r.stretch <= 0.01);
+  }
+}
+
+// Drift <= 1e-3 L and sag within 1 % of the catenary's: the catenary is the balance of forces, which the consistent
+// solve of a tip-pinned strand reproduces (follow-the-leader's fixed point was 12 % short of it, drift 0.13 L).
+TEST_CASE("analytic: a strand pinned at both ends hangs as the catenary", "[reference][analytic]") {
+  const Catenary cat = discrete_catenary(32, 0.3, 0.25);
+  for (double rate : {240.0, 480.0}) {
+    const CatenaryRun r = catenary_run(rate);
+    INFO("rate " << rate << " drift " << r.drift / 0.3 << " L, sag " << r.sag << " (expected " << cat.sag << ")");
+    CHECK(r.drift <= 1e-3 * 0.3);
+    CHECK(std::abs(r.sag / cat.sag - 1.0) <= 0.01);
   }
 }
 
@@ -148,4 +169,28 @@ TEST_CASE("analytic: a free strand falls freely", "[reference][analytic]") {
   }
   INFO("fell " << x0[0].y - x[0].y << " m, expected " << expect << "; worst relative error " << worst);
   CHECK(worst <= 1e-9);
+}
+
+// The converged reference: the same model stepped ever finer (on the CPU, beyond the GPU's 480 Hz) must stop
+// changing, or no configuration's model error can be measured against it. Richardson-style halving on the straight
+// groom settling as a chain (shape terms off, so every parameter means the same at every step): the distance between
+// the trajectories at h and h/2 must shrink by at least 1.5x per halving (first order: 2x).
+// Known to fail on the follow-the-leader length pass, whose DFTL velocity correction is a fraction of each step's
+// move, not a physical rate: 0.049, 0.049, 0.045, 0.040 (rms / median length) for 240/480 ... 1920/3840 Hz; the same
+// in shake, run and wind and on the curly groom (docs/accuracy.md). [!shouldfail] until the length constraints are
+// consistent.
+TEST_CASE("analytic: the model converges as the step halves (the converged reference exists)",
+          "[reference][analytic][!shouldfail]") {
+  TvkSimParams p = chain_params();
+  p.damping = 0.08f;
+  const auto a = tvk_test::groom("straight", 8);
+  double median = 0;
+  std::vector<std::vector<std::vector<Vec3>>> runs;
+  for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0}) runs.push_back(trajectory(a, p, rate, "settle", 30, &median));
+  std::vector<double> diffs;
+  for (size_t k = 0; k + 1 < runs.size(); ++k) {
+    diffs.push_back(tressvk::reference::trajectory_error(runs[k], runs[k + 1], median).rms_rel);
+  }
+  INFO("rms differences per halving: " << diffs[0] << ", " << diffs[1] << ", " << diffs[2] << ", " << diffs[3]);
+  for (size_t k = 0; k + 1 < diffs.size(); ++k) CHECK(diffs[k + 1] * 1.5 <= diffs[k]);
 }

@@ -74,10 +74,18 @@ struct FramePlan {
   uint32_t dropped_steps = 0;        // whole steps dropped by the cap in this frame
 };
 
+// The planner's limits. The defaults are the product's (TvkTimeSettings); a converged reference (docs/accuracy.md)
+// raises them, in double precision on the CPU only, to step the same model far finer than any GPU setting.
+struct PlannerLimits {
+  double max_step_rate = 480.0;                         // Hz
+  uint32_t max_steps_per_frame = TVK_MAX_STEPS_PER_FRAME;
+};
+
 class FramePlanner {
  public:
   // asset_origin: HairAsset::origin; bone_count: the asset's bone count (0 = rigid only).
-  FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count);
+  FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count,
+               const PlannerLimits& limits = {});
 
   // Throws std::invalid_argument for bad input (negative dt, bone_count mismatch, too many capsules...).
   FramePlan plan(const TvkSimFrame& frame);
@@ -92,6 +100,7 @@ class FramePlanner {
     Quat r;
   };
   TvkSimSettings settings_;
+  PlannerLimits limits_;
   std::array<double, 3> asset_origin_;
   uint32_t bone_count_;
   double h_ = 0;
