@@ -192,13 +192,13 @@ TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* s
 TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
   if (!instance || !frame) return TVK_ERROR_INVALID_ARGUMENT;
   Context& ctx = *instance->ctx;
-  const uint32_t bones = instance->asset->rest.bone_count;
-  if (frame->bones && frame->bone_count != bones)
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_frame: bone_count %u but the asset has %u bones",
-                    frame->bone_count, bones);
-  if (frame->capsule_count > TVK_MAX_CAPSULES)
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_frame: capsule_count %u exceeds %u",
-                    frame->capsule_count, TVK_MAX_CAPSULES);
+  // Every host number is checked here, so a NaN or infinity never reaches the GPU (where it would reset every strand
+  // every step and freeze the groom) and the host learns which field was wrong.
+  try {
+    tressvk::reference::validate_frame(*frame, instance->asset->rest.bone_count);
+  } catch (const std::exception& e) {
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_frame: %s", e.what());
+  }
   instance->frame = *frame;
   if (frame->bones) {
     instance->bones.assign(frame->bones, frame->bones + frame->bone_count);

@@ -172,7 +172,8 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   }
   vmaFlushAllocation(ctx.allocator, inst.ring.allocation, base, inst.slice_size);
   work.dynamic_offsets = {static_cast<uint32_t>(base), static_cast<uint32_t>(base), static_cast<uint32_t>(base)};
-  const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide);
+  const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide,
+                                                 inst.asset->rest.pinned_tip_strands > 0);
   work.passes = sim::passes_for(terms);
   return TVK_SUCCESS;
 }

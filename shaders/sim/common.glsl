@@ -11,6 +11,7 @@ const float kDirectionEps = 1e-4;  // an edge shorter than this fraction of its 
 const float kCollapse = 1.0;      // an edge shorter than this fraction of its rest length gets a blended direction
 const float kContactBand = 0.02;  // capsule contacts this deep (fraction of the radius) lose all inward velocity
 const float kFtlVelocityCorrection = 0.9;  // DFTL: share of a child's follow-the-leader move its parent gets back
+const float kSolvePivotMin = 1e-6;  // the tip-pinned length solve's smallest pivot, relative to its row's diagonal
 
 vec4 quat_mul(vec4 a, vec4 b) {
   return vec4(a.w * b.xyz + b.w * a.xyz + cross(a.xyz, b.xyz), a.w * b.w - dot(a.xyz, b.xyz));

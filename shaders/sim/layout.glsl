@@ -33,6 +33,7 @@ layout(constant_id = 4) const uint CAPSULE_COUNT = 0;     // 0..8, capsules test
 #define TVK_FEATURE_COLLISION 4u     // length: capsule collision (CAPSULE_COUNT capsules)
 #define TVK_FEATURE_SKINNING 8u      // bone weights blended (otherwise one rigid transform: bone 0)
 #define TVK_FEATURE_MAX_SPEED 16u    // length: velocity clamp
+#define TVK_FEATURE_PINNED_TIPS 32u  // length: strands pinned at both ends (the tridiagonal length solve)
 
 #define TVK_HAS(bit) ((FEATURES & (bit)) != 0u)
 

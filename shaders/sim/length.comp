@@ -9,6 +9,124 @@ layout(local_size_x_id = 0) in;
 
 bool finite3(vec3 x) { return !any(isnan(x)) && !any(isinf(x)); }
 
+// The (unnormalised) direction a length constraint restores along (twin: blended_direction in the reference): the
+// segment d itself, except that a compressed or flipped segment is blended with its direction at the previous step
+// (was) by the missing length (and the fold guard), which stays defined as the segment vanishes.
+vec3 blended_direction(vec3 d, vec3 was, float rest) {
+  float len = length(d);
+  vec3 dir = d;
+  float wl = length(was);
+  if (wl > kDirectionEps * rest) {
+    vec3 u = was / wl;
+    float blend = max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
+    if (blend > 0.0) dir = d + blend * u;
+  }
+  return dir;
+}
+// The same as a unit vector; zero when no direction is defined.
+vec3 constraint_direction(vec3 d, vec3 was, float rest) {
+  vec3 dir = blended_direction(d, was, rest);
+  float dl = length(dir);
+  return dl > 0.0 ? dir / dl : vec3(0.0);
+}
+
+// Segment v of the strand at b, through memory, with end weights wa (root-ward) and wb (tip-ward); positions only.
+void length_segment(uint b, uint v, float wa, float wb) {
+  float wsum = wa + wb;
+  if (!(wsum > 0.0)) return;
+  vec4 x = pos[b + v * TVK_BLOCK];
+  vec4 y = pos[b + (v + 1u) * TVK_BLOCK];
+  vec3 d = y.xyz - x.xyz;
+  float rest = rest_info[b + v * TVK_BLOCK].x;
+  vec3 dir = blended_direction(d, prev[b + (v + 1u) * TVK_BLOCK].xyz - prev[b + v * TVK_BLOCK].xyz, rest);
+  float dl = length(dir);
+  if (!(dl > 0.0)) return;
+  vec3 corr = (d - (rest / dl) * dir) / wsum;
+  if (wa > 0.0) pos[b + v * TVK_BLOCK] = vec4(x.xyz + wa * corr, x.w);
+  if (wb > 0.0) pos[b + (v + 1u) * TVK_BLOCK] = vec4(y.xyz - wb * corr, y.w);
+}
+
+float free_weight(uint b, uint v) { return pos[b + v * TVK_BLOCK].w > 0.0 ? 1.0 : 0.0; }
+
+// Gradient of segment v's constraint now, and the direction its correction moves along (midway between the start of
+// the step and now; the gradient when the two differ by more than 60 degrees).
+vec3 segment_grad(uint b, uint v) {
+  return constraint_direction(pos[b + (v + 1u) * TVK_BLOCK].xyz - pos[b + v * TVK_BLOCK].xyz,
+                              prev[b + (v + 1u) * TVK_BLOCK].xyz - prev[b + v * TVK_BLOCK].xyz,
+                              rest_info[b + v * TVK_BLOCK].x);
+}
+vec3 segment_mid(uint b, uint v, vec3 g) {
+  vec3 d = pos[b + (v + 1u) * TVK_BLOCK].xyz - pos[b + v * TVK_BLOCK].xyz;
+  vec3 was = prev[b + (v + 1u) * TVK_BLOCK].xyz - prev[b + v * TVK_BLOCK].xyz;
+  vec3 mid = constraint_direction(0.5 * (d + was), was, rest_info[b + v * TVK_BLOCK].x);
+  return dot(g, mid) > 0.5 ? mid : g;
+}
+
+// One Newton step of every segment's length constraint of a strand pinned at both ends (twin: solve_tip_pinned in
+// the reference, which writes the system out): a tridiagonal solve (Thomas algorithm) for the multipliers, then each
+// free vertex moves by lambda_v m_v - lambda_{v-1} m_{v-1}. Rare strands: read through memory.
+void solve_tip_pinned(uint b) {
+  float cp[N];
+  float dp[N];
+  vec3 g_here = segment_grad(b, 0u);
+  vec3 m_here = segment_mid(b, 0u, g_here);
+  vec3 m_before = vec3(0.0);
+  float cp_before = 0.0, dp_before = 0.0;
+  for (uint v = 0u; v + 1u < N; ++v) {
+    vec3 g_next = vec3(0.0), m_next = vec3(0.0);
+    if (v + 2u < N) {
+      g_next = segment_grad(b, v + 1u);
+      m_next = segment_mid(b, v + 1u, g_next);
+    }
+    float wa = free_weight(b, v), wb = free_weight(b, v + 1u);
+    bool live = wa + wb > 0.0;
+    float diag = live ? (wa + wb) * dot(g_here, m_here) : 1.0;
+    float c = live ? dot(pos[b + (v + 1u) * TVK_BLOCK].xyz - pos[b + v * TVK_BLOCK].xyz, g_here) -
+                           rest_info[b + v * TVK_BLOCK].x
+                     : 0.0;
+    float sub = live && v > 0u ? -wa * dot(g_here, m_before) : 0.0;
+    float sup = live && v + 2u < N ? -wb * dot(g_here, m_next) : 0.0;
+    float den = max(diag - sub * cp_before, kSolvePivotMin * diag);
+    cp[v] = sup / den;
+    dp[v] = (c - sub * dp_before) / den;
+    cp_before = cp[v];
+    dp_before = dp[v];
+    m_before = m_here;
+    g_here = g_next;
+    m_here = m_next;
+  }
+  for (uint v = N - 2u; v-- > 0u;) dp[v] -= cp[v] * dp[v + 1u];  // now lambda
+  // A damped Newton step: when the linearisation asks a vertex to move more than half of its shorter segment, the
+  // whole update is scaled down to that (1 in ordinary motion), so the iteration cannot diverge.
+  float scale = 1.0;
+  vec3 m_prev = vec3(0.0);
+  for (uint v = 0u; v < N; ++v) {
+    vec3 m_v = v + 1u < N ? segment_mid(b, v, segment_grad(b, v)) : vec3(0.0);
+    if (pos[b + v * TVK_BLOCK].w > 0.0) {
+      float reach = 0.5 * min(v > 0u ? rest_info[b + (v - 1u) * TVK_BLOCK].x : 1.0 / 0.0,
+                              v + 1u < N ? rest_info[b + v * TVK_BLOCK].x : 1.0 / 0.0);
+      vec3 dx = vec3(0.0);
+      if (v + 1u < N) dx += dp[v] * m_v;
+      if (v > 0u) dx -= dp[v - 1u] * m_prev;
+      float len = length(dx);
+      if (len * scale > reach) scale = reach / len;
+    }
+    m_prev = m_v;
+  }
+  m_prev = vec3(0.0);
+  for (uint v = 0u; v < N; ++v) {
+    vec3 m_v = v + 1u < N ? segment_mid(b, v, segment_grad(b, v)) : vec3(0.0);  // v and v + 1 not yet moved
+    vec4 x = pos[b + v * TVK_BLOCK];
+    if (x.w > 0.0) {
+      vec3 dx = vec3(0.0);
+      if (v + 1u < N) dx += dp[v] * m_v;
+      if (v > 0u) dx -= dp[v - 1u] * m_prev;
+      pos[b + v * TVK_BLOCK] = vec4(x.xyz + scale * dx, x.w);
+    }
+    m_prev = m_v;
+  }
+}
+
 void main() {
   uint g = gl_GlobalInvocationID.x;
   if (g >= pc.guide_count) return;
@@ -88,7 +206,24 @@ void main() {
     }
   }
 
-  for (uint it = 0u; it < gp.length_iterations; ++it) {
+  // A strand pinned at its tip too (TressFX bothEndsImmovable; see the reference's length_and_collision): Newton steps
+  // of the whole strand's constraints, then a positions-only follow-the-leader clean-up from both ends toward the
+  // middle segment. Follow-the-leader from the root alone would leave the step's whole error next to the pinned tip.
+  bool tip_pinned = TVK_HAS(TVK_FEATURE_PINNED_TIPS) && !(pos[b + (N - 1u) * TVK_BLOCK].w > 0.0);
+  if (tip_pinned) {
+    for (uint it = 0u; it < gp.length_iterations; ++it) solve_tip_pinned(b);
+    uint split = (N - 1u) / 2u;
+    for (uint v = 0u; v < split; ++v) {
+      float wb = free_weight(b, v + 1u);
+      length_segment(b, v, (free_weight(b, v) > 0.0 && !(wb > 0.0)) ? 1.0 : 0.0, wb);
+    }
+    for (uint v = N - 2u; v > split; --v) {
+      float wa = free_weight(b, v);
+      length_segment(b, v, wa, (free_weight(b, v + 1u) > 0.0 && !(wa > 0.0)) ? 1.0 : 0.0);
+    }
+    length_segment(b, split, free_weight(b, split), free_weight(b, split + 1u));
+  }
+  for (uint it = 0u; it < (tip_pinned ? 0u : gp.length_iterations); ++it) {
     bool last_sweep = it + 1u == gp.length_iterations;
     // The sweep carries the vertex it just moved (and its previous position) to the next edge in registers:
     // reloading it would wait on its own store, a round trip through the memory hierarchy at every vertex of the

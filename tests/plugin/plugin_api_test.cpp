@@ -7,6 +7,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 using namespace tressvk;
@@ -93,6 +94,40 @@ TEST_CASE("out-of-range parameters are refused naming the field", "[plugin]") {
     CHECK(std::string(tressvk_last_error(ctx.get())).find("local_stiffness") != std::string::npos);
     p = TVK_SIM_PARAMS_DEFAULT_INIT;
     CHECK(tressvk_set_sim_params(inst.handle(), 7, &p) == TVK_ERROR_INVALID_ARGUMENT);
+  }
+  tressvk_destroy_asset(a);
+}
+
+TEST_CASE("tressvk_set_frame refuses non-finite host input naming the field", "[plugin]") {
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), test::small_groom("straight", 8));
+  {
+    test::GpuInstance inst(ctx.get(), a, {}, TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT);
+    TvkSimFrame f = TVK_SIM_FRAME_DEFAULT_INIT;
+    f.dt = 1.0f / 60.0f;
+    CHECK(tressvk_set_frame(inst.handle(), &f) == TVK_SUCCESS);
+    f.transform.translation[0] = std::numeric_limits<double>::quiet_NaN();
+    CHECK(tressvk_set_frame(inst.handle(), &f) == TVK_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(tressvk_last_error(ctx.get())).find("transform.translation[0]") != std::string::npos);
+    f = TVK_SIM_FRAME_DEFAULT_INIT;
+    f.capsule_count = 1;
+    f.capsules[0].r0 = std::numeric_limits<float>::infinity();
+    CHECK(tressvk_set_frame(inst.handle(), &f) == TVK_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(tressvk_last_error(ctx.get())).find("capsules[0]") != std::string::npos);
+    f = TVK_SIM_FRAME_DEFAULT_INIT;
+    f.wind.strength = std::numeric_limits<float>::quiet_NaN();
+    CHECK(tressvk_set_frame(inst.handle(), &f) == TVK_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(tressvk_last_error(ctx.get())).find("wind.strength") != std::string::npos);
+    f = TVK_SIM_FRAME_DEFAULT_INIT;
+    for (double& r : f.transform.rotation) r = 0.0;
+    CHECK(tressvk_set_frame(inst.handle(), &f) == TVK_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(tressvk_last_error(ctx.get())).find("transform.rotation") != std::string::npos);
+    // A refused frame leaves the instance simulating: a good frame still runs.
+    f = TVK_SIM_FRAME_DEFAULT_INIT;
+    f.dt = 1.0f / 60.0f;
+    inst.run_frame(f);
+    CHECK(inst.stats().nonfinite_strand_resets == 0u);
+    CHECK(inst.stats().frames == 1u);
   }
   tressvk_destroy_asset(a);
 }

@@ -5,6 +5,7 @@
 //   tressvk-bench compare --asset mohawk.tvkhair --scene run
 #include "bench.hpp"
 #include "render_bench.hpp"
+#include "run_bench.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
@@ -123,8 +124,11 @@ int main(int argc, char** argv) {
   compare->add_flag("--validation", validation, "enable the Vulkan validation layer");
   bench::RenderBenchOptions render_options;
   CLI::App* render = bench::add_render_subcommand(app, render_options);
+  bench::RunCommand run_command;
+  bench::add_run_command(app, run_command);
   CLI11_PARSE(app, argc, argv);
   if (render->parsed()) return bench::run_render_bench(render_options);
+  if (run_command.app->parsed()) return bench::execute_run_command(run_command);
 
   o.trajectory = !no_trajectory;
   try {

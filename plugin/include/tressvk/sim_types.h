@@ -135,6 +135,13 @@ typedef struct TvkSimFrame {
   TvkWind wind;
 } TvkSimFrame;
 
+/* A still frame: dt 0, identity transform, no bones, no teleport or reset, no capsules, no wind. Every number in a
+ * frame must be finite (and rotations unit quaternions, radii >= 0): tressvk_set_frame refuses anything else with a
+ * message naming the field, so one bad host value never reaches the GPU. */
+#define TVK_SIM_FRAME_DEFAULT_INIT                                                                  \
+  { 0.0f, TVK_INSTANCE_TRANSFORM_DEFAULT_INIT, 0, 0u, 0u, 0u, 0u,                                   \
+    { { { 0.0f, 0.0f, 0.0f }, 0.0f, { 0.0f, 0.0f, 0.0f }, 0.0f } }, TVK_WIND_DEFAULT_INIT }
+
 /* Per instance, fixed for the instance's life (changing them is allowed between frames). */
 typedef struct TvkSimSettings {
   float gravity[3];              /* m/s^2, world. Default (0, -9.81, 0) */

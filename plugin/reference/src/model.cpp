@@ -97,6 +97,12 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
   }
   for (uint32_t g = 0; g < g_count; ++g) {
     const size_t b = size_t{g} * n;
+    bool any_free = false;
+    for (uint32_t v = 0; v < n; ++v) any_free = any_free || m.inv_mass[b + v] > 0.0;
+    if (any_free && m.inv_mass[b + n - 1] == 0.0) ++m.pinned_tip_strands;
+  }
+  for (uint32_t g = 0; g < g_count; ++g) {
+    const size_t b = size_t{g} * n;
     const double mean_seg = m.strand_length[g] / (n - 1);
     const auto& f = a.rest_frames[b];
     Quat frame = normalize(Quat{f[0], f[1], f[2], f[3]});

@@ -43,17 +43,63 @@ BonePose bone_pose(const TvkBoneMatrix& m, uint32_t index) {
   return {{m.rows[0][3], m.rows[1][3], m.rows[2][3]}, quat_from_matrix(rot)};
 }
 
+bool finite_all(const float* v, size_t count) {
+  for (size_t i = 0; i < count; ++i) {
+    if (!std::isfinite(v[i])) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
-FramePlanner::FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count)
-    : settings_(settings), asset_origin_(asset_origin), bone_count_(bone_count) {
+void validate_frame(const TvkSimFrame& frame, uint32_t asset_bone_count) {
+  require(std::isfinite(frame.dt) && frame.dt >= 0.0f, "dt must be finite and >= 0");
+  for (int i = 0; i < 3; ++i) {
+    require(std::isfinite(frame.transform.translation[i]),
+            "transform.translation[" + std::to_string(i) + "] is not finite");
+  }
+  for (int i = 0; i < 4; ++i) {
+    require(std::isfinite(frame.transform.rotation[i]), "transform.rotation[" + std::to_string(i) + "] is not finite");
+  }
+  checked_rotation(frame.transform.rotation, "transform.rotation");
+  if (frame.bones != nullptr) {
+    require(asset_bone_count > 0, "bones given for an asset without bone weights");
+    require(frame.bone_count == asset_bone_count, "bone_count " + std::to_string(frame.bone_count) +
+                                                      " differs from the asset's " + std::to_string(asset_bone_count));
+    for (uint32_t b = 0; b < frame.bone_count; ++b) {
+      require(finite_all(&frame.bones[b].rows[0][0], 12), "bones[" + std::to_string(b) + "] is not finite");
+      bone_pose(frame.bones[b], b);  // a rotation (no scale or shear)
+    }
+  }
+  require(frame.capsule_count <= TVK_MAX_CAPSULES, "capsule_count exceeds TVK_MAX_CAPSULES");
+  for (uint32_t c = 0; c < frame.capsule_count; ++c) {
+    const TvkCapsule& cap = frame.capsules[c];
+    const std::string name = "capsules[" + std::to_string(c) + "]";
+    require(finite_all(cap.p0, 3), name + ".p0 is not finite");
+    require(finite_all(cap.p1, 3), name + ".p1 is not finite");
+    require(std::isfinite(cap.r0) && std::isfinite(cap.r1), name + " has a radius that is not finite");
+    require(cap.r0 >= 0.0f && cap.r1 >= 0.0f, name + " has a negative radius");
+  }
+  const TvkWind& w = frame.wind;
+  require(finite_all(w.direction, 3), "wind.direction is not finite");
+  require(std::isfinite(w.strength), "wind.strength is not finite");
+  require(std::isfinite(w.gust_amplitude), "wind.gust_amplitude is not finite");
+  require(std::isfinite(w.gust_frequency), "wind.gust_frequency is not finite");
+  require(std::isfinite(w.cone_angle), "wind.cone_angle is not finite");
+}
+
+FramePlanner::FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count,
+                           const PlannerLimits& limits)
+    : settings_(settings), limits_(limits), asset_origin_(asset_origin), bone_count_(bone_count) {
   set_settings(settings);
 }
 
 void FramePlanner::set_settings(const TvkSimSettings& settings) {
-  require(std::isfinite(settings.time.step_rate) && settings.time.step_rate >= 30.0f && settings.time.step_rate <= 480.0f,
-          "time.step_rate must be within 30..480 Hz");
-  require(settings.time.max_steps_per_frame >= 1 && settings.time.max_steps_per_frame <= TVK_MAX_STEPS_PER_FRAME,
+  require(std::isfinite(settings.time.step_rate) && settings.time.step_rate >= 30.0f &&
+              static_cast<double>(settings.time.step_rate) <= limits_.max_step_rate,
+          limits_.max_step_rate == 480.0 ? "time.step_rate must be within 30..480 Hz"
+                                         : "time.step_rate must be within 30 Hz..the planner's limit");
+  require(settings.time.max_steps_per_frame >= 1 && settings.time.max_steps_per_frame <= limits_.max_steps_per_frame,
           "time.max_steps_per_frame must be within 1..TVK_MAX_STEPS_PER_FRAME");
   for (float g : settings.gravity) require(std::isfinite(g), "gravity is not finite");
   settings_ = settings;
@@ -61,15 +107,8 @@ void FramePlanner::set_settings(const TvkSimSettings& settings) {
 }
 
 FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
-  require(std::isfinite(frame.dt) && frame.dt >= 0.0f, "dt must be finite and >= 0");
-  require(frame.capsule_count <= TVK_MAX_CAPSULES, "capsule_count exceeds TVK_MAX_CAPSULES");
+  validate_frame(frame, bone_count_);
   const bool skinned = frame.bones != nullptr;
-  if (skinned) {
-    require(bone_count_ > 0, "bones given for an asset without bone weights");
-    require(frame.bone_count == bone_count_, "bone_count " + std::to_string(frame.bone_count) +
-                                                 " differs from the asset's " + std::to_string(bone_count_));
-  }
-  for (int i = 0; i < 3; ++i) require(std::isfinite(frame.transform.translation[i]), "transform.translation is not finite");
   Pose now{{frame.transform.translation[0], frame.transform.translation[1], frame.transform.translation[2]},
            checked_rotation(frame.transform.rotation, "transform.rotation")};
   std::vector<Pose> bones_now;

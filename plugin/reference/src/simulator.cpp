@@ -8,8 +8,8 @@
 namespace tressvk::reference {
 
 Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
-                     const TvkSimSettings& settings)
-    : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count) {
+                     const TvkSimSettings& settings, const PlannerLimits& limits)
+    : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
   set_params(group_params);
   median_length_ = reference::median_strand_length(rest_);
   const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
@@ -17,6 +17,8 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
   tangent_.assign(n_all, Vec3{});
   prev_.assign(rest_.rest_pos.size(), Vec3{});
   prevprev_.assign(rest_.rest_pos.size(), Vec3{});
+  seg_cp_.assign(rest_.vertices_per_strand, 0.0);
+  seg_dp_.assign(rest_.vertices_per_strand, 0.0);
 }
 
 void Simulator::set_params(std::span<const TvkSimParams> group_params) {
@@ -260,6 +262,101 @@ void Simulator::local_shape(const Substep& st) {
   }
 }
 
+namespace {
+// The (unnormalised) direction a length constraint restores along: the segment d itself, except that a compressed or
+// flipped segment is blended with its direction at the previous step (was) by the missing length (and the fold
+// guard), which stays defined as the segment vanishes (normalize(d) would not). GLSL twin: length.comp.
+Vec3 blended_direction(Vec3 d, Vec3 was, double rest) {
+  const double len = length(d);
+  Vec3 dir = d;
+  const double wl = length(was);
+  if (wl > kDirectionEps * rest) {
+    const Vec3 u = was / wl;
+    const double blend = std::max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
+    if (blend > 0.0) dir = d + blend * u;
+  }
+  return dir;
+}
+// The same as a unit vector; zero when no direction is defined.
+Vec3 constraint_direction(Vec3 d, Vec3 was, double rest) {
+  const Vec3 dir = blended_direction(d, was, rest);
+  const double dl = length(dir);
+  return dl > 0.0 ? dir / dl : Vec3{};
+}
+}  // namespace
+
+void Simulator::solve_tip_pinned(size_t b) {
+  // One Newton step of C_v(x) = |x_{v+1} - x_v| - rest_v = 0 for every segment at once. The correction moves each free
+  // vertex along the segments' directions midway between the start of the step and now (m_v; the implicit midpoint
+  // rule, which dissipates nothing), by multipliers lambda from the tridiagonal system
+  //   (W_v + W_{v+1}) (g_v . m_v) lambda_v - W_v (g_v . m_{v-1}) lambda_{v-1} - W_{v+1} (g_v . m_{v+1}) lambda_{v+1}
+  //     = C_v,
+  // g_v the constraint gradient now, W 1 for a free vertex and 0 for a pinned one (Thomas algorithm; a row of two
+  // pinned vertices is lambda_v = 0). Then x_v += lambda_v m_v - lambda_{v-1} m_{v-1}. GLSL twin: length.comp.
+  const uint32_t n = rest_.vertices_per_strand, m = n - 1;
+  auto w = [&](uint32_t v) { return rest_.inv_mass[b + v] > 0.0 ? 1.0 : 0.0; };
+  auto mid_dir = [&](uint32_t v, Vec3 g) {
+    const Vec3 d = pos_[b + v + 1] - pos_[b + v];
+    const Vec3 was = prev_[b + v + 1] - prev_[b + v];
+    const Vec3 mid = constraint_direction(0.5 * (d + was), was, rest_.rest_length[b + v]);
+    return dot(g, mid) > 0.5 ? mid : g;
+  };
+  auto grad = [&](uint32_t v) {
+    return constraint_direction(pos_[b + v + 1] - pos_[b + v], prev_[b + v + 1] - prev_[b + v], rest_.rest_length[b + v]);
+  };
+  Vec3 g_here = grad(0), m_before{}, m_here = mid_dir(0, g_here);
+  double cp_before = 0.0, dp_before = 0.0;
+  for (uint32_t v = 0; v < m; ++v) {
+    Vec3 g_next{}, m_next{};
+    if (v + 1 < m) {
+      g_next = grad(v + 1);
+      m_next = mid_dir(v + 1, g_next);
+    }
+    const double wa = w(v), wb = w(v + 1);
+    const bool active = wa + wb > 0.0;
+    const double diag = active ? (wa + wb) * dot(g_here, m_here) : 1.0;
+    const double c = active ? dot(pos_[b + v + 1] - pos_[b + v], g_here) - rest_.rest_length[b + v] : 0.0;
+    const double sub = active && v > 0 ? -wa * dot(g_here, m_before) : 0.0;
+    const double sup = active && v + 1 < m ? -wb * dot(g_here, m_next) : 0.0;
+    const double den = std::max(diag - sub * cp_before, kSolvePivotMin * diag);
+    seg_cp_[v] = sup / den;
+    seg_dp_[v] = (c - sub * dp_before) / den;
+    cp_before = seg_cp_[v];
+    dp_before = seg_dp_[v];
+    m_before = m_here;
+    g_here = g_next;
+    m_here = m_next;
+  }
+  for (uint32_t v = m - 1; v-- > 0;) seg_dp_[v] -= seg_cp_[v] * seg_dp_[v + 1];  // now lambda
+  // A damped Newton step: when the linearisation asks a vertex to move more than half of its shorter segment (large
+  // steps, violent motion), the whole update is scaled down to that, so the iteration cannot diverge; the clean-up
+  // sweep then restores the lengths. The scale is 1 in ordinary motion.
+  auto move_of = [&](uint32_t v, Vec3 m_v, Vec3 m_prev) {
+    Vec3 dx{};
+    if (v < m) dx += seg_dp_[v] * m_v;
+    if (v > 0) dx -= seg_dp_[v - 1] * m_prev;
+    return dx;
+  };
+  double scale = 1.0;
+  Vec3 m_prev{};
+  for (uint32_t v = 0; v < n; ++v) {
+    const Vec3 m_v = v < m ? mid_dir(v, grad(v)) : Vec3{};
+    if (w(v) > 0.0) {
+      const double reach = 0.5 * std::min(v > 0 ? rest_.rest_length[b + v - 1] : INFINITY,
+                                          v < m ? rest_.rest_length[b + v] : INFINITY);
+      const double len = length(move_of(v, m_v, m_prev));
+      if (len * scale > reach) scale = reach / len;
+    }
+    m_prev = m_v;
+  }
+  m_prev = Vec3{};
+  for (uint32_t v = 0; v < n; ++v) {
+    const Vec3 m_v = v < m ? mid_dir(v, grad(v)) : Vec3{};  // from positions not yet moved (v and v + 1)
+    if (w(v) > 0.0) pos_[b + v] += scale * move_of(v, m_v, m_prev);
+    m_prev = m_v;
+  }
+}
+
 void Simulator::length_and_collision(const Substep& st) {
   const uint32_t n = rest_.vertices_per_strand;
   for (uint32_t g = 0; g < rest_.guide_count; ++g) {
@@ -318,34 +415,49 @@ void Simulator::length_and_collision(const Substep& st) {
       }
     }
 
-    for (uint32_t it = 0; it < gp.length_iterations; ++it) {
-      const bool last_sweep = it + 1 == gp.length_iterations;
-      for (uint32_t v = 0; v + 1 < n; ++v) {
-        const double wb = movable(b + v + 1) ? 1.0 : 0.0;
-        const double wa = (movable(b + v) && !(last_sweep && wb > 0.0)) ? 1.0 : 0.0;
-        const double wsum = wa + wb;
-        if (wsum == 0.0) continue;
-        const Vec3 d = pos_[b + v + 1] - pos_[b + v];
-        const double len = length(d);
-        const double rest = rest_.rest_length[b + v];
-        Vec3 dir = d;
-        // Compressed or flipped: restored along its direction blended with the previous step's (see length.comp).
-        const Vec3 was = prev_[b + v + 1] - prev_[b + v];
-        const double wl = length(was);
-        if (wl > kDirectionEps * rest) {
-          const Vec3 u = was / wl;
-          const double blend = std::max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
-          if (blend > 0.0) dir = d + blend * u;
+    // One segment's length constraint with end weights wa (root-ward) and wb (tip-ward), moving the ends along the
+    // segment's direction (blended with the previous step's when compressed or flipped: constraint_direction). dftl:
+    // a follow-the-leader move of the child, whose parent gets the opposite of the move as velocity (the DFTL
+    // correction, which keeps the strand's momentum plausible and removes FTL's energy gain).
+    auto segment = [&](uint32_t v, double wa, double wb, bool dftl) {
+      const double wsum = wa + wb;
+      if (wsum == 0.0) return;
+      const Vec3 d = pos_[b + v + 1] - pos_[b + v];
+      const double rest = rest_.rest_length[b + v];
+      const Vec3 dir = blended_direction(d, prev_[b + v + 1] - prev_[b + v], rest);
+      const double dl = length(dir);
+      if (!(dl > 0.0)) return;
+      const Vec3 corr = (d - (rest / dl) * dir) / wsum;
+      if (wa > 0.0) pos_[b + v] += wa * corr;
+      if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
+      if (dftl && wa == 0.0 && wb > 0.0 && movable(b + v)) prev_[b + v] -= kFtlVelocityCorrection * corr;
+    };
+    if (movable(b + n - 1)) {
+      for (uint32_t it = 0; it < gp.length_iterations; ++it) {
+        const bool last_sweep = it + 1 == gp.length_iterations;
+        for (uint32_t v = 0; v + 1 < n; ++v) {
+          const double wb = movable(b + v + 1) ? 1.0 : 0.0;
+          const double wa = (movable(b + v) && !(last_sweep && wb > 0.0)) ? 1.0 : 0.0;
+          segment(v, wa, wb, last_sweep);
         }
-        const double dl = length(dir);
-        if (!(dl > 0.0)) continue;
-        const Vec3 corr = (d - (rest / dl) * dir) / wsum;
-        if (wa > 0.0) pos_[b + v] += wa * corr;
-        if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
-        // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (the
-        // DFTL correction), which keeps the strand's momentum plausible and removes FTL's energy gain.
-        if (last_sweep && wa == 0.0 && wb > 0.0 && movable(b + v)) prev_[b + v] -= kFtlVelocityCorrection * corr;
       }
+    } else {
+      // A strand pinned at its tip too (TressFX bothEndsImmovable): follow-the-leader from the root would leave the
+      // step's whole error in the segment next to the pinned tip (335 % stretch measured on a hanging catenary), and
+      // from both ends the two halves slide against their middle (170 % there). Instead length_iterations Newton
+      // steps of the whole strand's constraint system (solve_tip_pinned), then a follow-the-leader clean-up from both
+      // ends toward the middle segment for what the linearisation left, which moves positions only.
+      for (uint32_t it = 0; it < gp.length_iterations; ++it) solve_tip_pinned(b);
+      const uint32_t split = (n - 1) / 2;
+      for (uint32_t v = 0; v < split; ++v) {
+        const double wb = movable(b + v + 1) ? 1.0 : 0.0;
+        segment(v, (movable(b + v) && !(wb > 0.0)) ? 1.0 : 0.0, wb, false);
+      }
+      for (uint32_t v = n - 2; v > split; --v) {
+        const double wa = movable(b + v) ? 1.0 : 0.0;
+        segment(v, wa, (movable(b + v + 1) && !(wa > 0.0)) ? 1.0 : 0.0, false);
+      }
+      segment(split, movable(b + split) ? 1.0 : 0.0, movable(b + split + 1) ? 1.0 : 0.0, false);
     }
 
     if (gp.max_step > 0.0) {

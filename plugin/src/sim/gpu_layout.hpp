@@ -50,6 +50,7 @@ enum Feature : uint32_t {
   kFeatureCollision = 4u,
   kFeatureSkinning = 8u,
   kFeatureMaxSpeed = 16u,
+  kFeaturePinnedTips = 32u,  // length: some strand is pinned at its tip too (the tridiagonal length solve)
 };
 
 // Vertex layout of every per-vertex buffer (positions, tangents, the histories, the static rest data): strands in

@@ -40,7 +40,7 @@ const std::array<PassInfo, 5> kPasses = {{
            kBindingAnchors}) | kSkinReads,
      bits({kBindingPositions, kBindingPrevPositions, kBindingPrevPrevPositions, kBindingTangents,
            kBindingCounters}),
-     kFeatureWind | kFeatureCollision | kFeatureMaxSpeed | kFeatureSkinning, true},
+     kFeatureWind | kFeatureCollision | kFeatureMaxSpeed | kFeatureSkinning | kFeaturePinnedTips, true},
     {PassId::kFollow, "follow", k_spv_follow_comp, sizeof(k_spv_follow_comp), Granularity::kFollowVertex,
      Frequency::kPerFrame,
      bits({kBindingPositions, kBindingTangents, kBindingRestInfo, kBindingRootFrames, kBindingFollowOffsets,
@@ -54,8 +54,10 @@ std::span<const PassInfo> pass_table() { return kPasses; }
 
 const PassInfo& pass_info(PassId id) { return kPasses[static_cast<size_t>(id)]; }
 
-SceneTerms scene_terms(std::span<const TvkSimParams> groups, const TvkSimFrame& frame, uint32_t follow_per_guide) {
+SceneTerms scene_terms(std::span<const TvkSimParams> groups, const TvkSimFrame& frame, uint32_t follow_per_guide,
+                       bool pinned_tips) {
   SceneTerms t;
+  if (pinned_tips) t.features |= kFeaturePinnedTips;
   for (const TvkSimParams& g : groups) {
     if (g.vsp_coefficient > 0.0f) t.vsp = true;
     if (g.local_stiffness > 0.0f && g.local_iterations > 0) t.local_shape = true;
@@ -87,6 +89,7 @@ std::vector<PassUse> passes_for(const SceneTerms& terms) {
     if (use.features & kFeatureWind) use.name += "+wind";
     if (use.features & kFeatureCollision) use.name += "+collision";
     if (use.features & kFeatureMaxSpeed) use.name += "+clamp";
+    if (use.features & kFeaturePinnedTips) use.name += "+pinned-tips";
     out.push_back(std::move(use));
   }
   return out;

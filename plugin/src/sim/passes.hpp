@@ -55,7 +55,7 @@ struct SceneTerms {
   bool vsp = false;            // some group has vsp_coefficient > 0
   bool local_shape = false;    // some group has local_stiffness > 0 and local_iterations > 0
   bool follow = false;         // the asset has follow hairs (K > 0)
-  uint32_t features = 0;       // Feature bits (global shape, wind, collision, skinning, max speed)
+  uint32_t features = 0;       // Feature bits (global shape, wind, collision, skinning, max speed, pinned tips)
   uint32_t capsule_count = 0;  // 0..8 (0 unless collision)
 };
 
@@ -63,7 +63,10 @@ struct SceneTerms {
 // local_shape pass; K = 0 => no follow pass; wind strength 0 or zero direction => no wind term; no capsules =>
 // no collision term; max_speed 0 in every group => no clamp; global stiffness or range 0 in every group => no
 // global shape term; no bone matrices => rigid transform only.
-SceneTerms scene_terms(std::span<const TvkSimParams> groups, const TvkSimFrame& frame, uint32_t follow_per_guide);
+// pinned_tips: the asset has a strand pinned at its tip with free vertices (it compiles the length pass's
+// tridiagonal solve in; without such strands the pipeline carries none of it).
+SceneTerms scene_terms(std::span<const TvkSimParams> groups, const TvkSimFrame& frame, uint32_t follow_per_guide,
+                       bool pinned_tips = false);
 
 struct PassUse {
   const PassInfo* info;

@@ -14,6 +14,16 @@ int main(void) {
     fprintf(stderr, "consumer (C): unexpected device requirements\n");
     return 1;
   }
+  {
+    /* The default initialisers compile as C and give a valid still frame. */
+    TvkSimFrame frame = TVK_SIM_FRAME_DEFAULT_INIT;
+    TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
+    if (frame.dt != 0.0f || frame.transform.rotation[3] != 1.0 || frame.bones || frame.capsule_count != 0u ||
+        frame.wind.strength != 0.0f || params.local_iterations != 2u) {
+      fprintf(stderr, "consumer (C): unexpected default initialisers\n");
+      return 1;
+    }
+  }
   printf("consumer (C): TressVK %u, needs Vulkan %u.%u with %u extension(s)\n", tressvk_version(),
          VK_API_VERSION_MAJOR(req.min_api_version), VK_API_VERSION_MINOR(req.min_api_version), req.extension_count);
   return 0;

@@ -5,6 +5,8 @@
 #include <catch2/matchers/catch_matchers_string.hpp>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 
 #include "helpers.hpp"
 
@@ -188,4 +190,51 @@ TEST_CASE("planner: bad input is rejected with the field named", "[reference][pl
   TvkSimParams p = default_params();
   p.length_iterations = 0;
   CHECK_THROWS_WITH(to_group_step(p, 1.0 / 120.0, 0.0), Catch::Matchers::ContainsSubstring("length_iterations"));
+}
+
+TEST_CASE("planner: every non-finite host number is refused naming its field", "[reference][planner]") {
+  FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const float finf = std::numeric_limits<float>::infinity(), fnan = std::numeric_limits<float>::quiet_NaN();
+  struct Case {
+    const char* field;
+    std::function<void(TvkSimFrame&)> spoil;
+  };
+  const std::vector<Case> cases = {
+      {"transform.translation[1]", [&](TvkSimFrame& f) { f.transform.translation[1] = nan; }},
+      {"transform.translation[2]", [&](TvkSimFrame& f) { f.transform.translation[2] = inf; }},
+      {"transform.rotation[0]", [&](TvkSimFrame& f) { f.transform.rotation[0] = nan; }},
+      {"transform.rotation", [&](TvkSimFrame& f) { f.transform.rotation[3] = 0.0; }},  // zeroed quaternion
+      {"capsules[1].p0", [&](TvkSimFrame& f) { f.capsule_count = 2; f.capsules[1].p0[0] = fnan; }},
+      {"capsules[0].p1", [&](TvkSimFrame& f) { f.capsule_count = 1; f.capsules[0].p1[2] = finf; }},
+      {"capsules[0] has a radius", [&](TvkSimFrame& f) { f.capsule_count = 1; f.capsules[0].r1 = finf; }},
+      {"capsules[0] has a radius", [&](TvkSimFrame& f) { f.capsule_count = 1; f.capsules[0].r0 = fnan; }},
+      {"wind.direction", [&](TvkSimFrame& f) { f.wind.direction[1] = fnan; }},
+      {"wind.strength", [&](TvkSimFrame& f) { f.wind.strength = finf; }},
+      {"wind.gust_amplitude", [&](TvkSimFrame& f) { f.wind.gust_amplitude = fnan; }},
+      {"wind.gust_frequency", [&](TvkSimFrame& f) { f.wind.gust_frequency = finf; }},
+      {"wind.cone_angle", [&](TvkSimFrame& f) { f.wind.cone_angle = fnan; }},
+      {"dt", [&](TvkSimFrame& f) { f.dt = finf; }},
+  };
+  for (const Case& c : cases) {
+    TvkSimFrame f = TVK_SIM_FRAME_DEFAULT_INIT;
+    f.dt = 1.0f / 60.0f;
+    c.spoil(f);
+    INFO(c.field);
+    CHECK_THROWS_WITH(validate_frame(f, 0), Catch::Matchers::ContainsSubstring(c.field));
+    CHECK_THROWS_WITH(planner.plan(f), Catch::Matchers::ContainsSubstring(c.field));
+  }
+  // Bones: a NaN in a matrix names the bone.
+  std::vector<TvkBoneMatrix> bones(3, TvkBoneMatrix TVK_BONE_MATRIX_IDENTITY_INIT);
+  bones[2].rows[1][3] = fnan;
+  TvkSimFrame f = TVK_SIM_FRAME_DEFAULT_INIT;
+  f.bones = bones.data();
+  f.bone_count = 3;
+  CHECK_THROWS_WITH(validate_frame(f, 3), Catch::Matchers::ContainsSubstring("bones[2]"));
+  // The default frame itself is valid, and so is a frame with finite values everywhere.
+  TvkSimFrame ok = TVK_SIM_FRAME_DEFAULT_INIT;
+  CHECK_NOTHROW(validate_frame(ok, 0));
+  CHECK(ok.dt == 0.0f);
+  CHECK(ok.transform.rotation[3] == 1.0);
+  CHECK(ok.capsule_count == 0u);
 }

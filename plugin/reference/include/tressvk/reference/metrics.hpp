@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "sim/gpu_layout.hpp"
 #include "tressvk/reference/math.hpp"
@@ -38,6 +39,27 @@ ErrorStats position_error(std::span<const A> a, std::span<const B> b, double med
   if (n > 0 && median_length > 0) {
     e.max_rel /= median_length;
     e.rms_rel = std::sqrt(sum / static_cast<double>(n)) / median_length;
+  }
+  return e;
+}
+
+// The model error of a trajectory (docs/accuracy.md): the distance of every vertex at every sampled frame from the
+// same vertex in a reference trajectory (normally the converged one: the same model stepped far finer), relative to
+// the median strand length; rms over all samples, and the max. Frames are compared index by index.
+inline ErrorStats trajectory_error(const std::vector<std::vector<Vec3>>& a, const std::vector<std::vector<Vec3>>& b,
+                                   double median_length) {
+  ErrorStats e;
+  double sum = 0;
+  const size_t frames = a.size() < b.size() ? a.size() : b.size();
+  for (size_t f = 0; f < frames; ++f) {
+    const ErrorStats one = position_error(std::span<const Vec3>(a[f]), std::span<const Vec3>(b[f]), 1.0);
+    e.max_rel = one.max_rel > e.max_rel ? one.max_rel : e.max_rel;
+    sum += one.rms_rel * one.rms_rel * static_cast<double>(one.count);
+    e.count += one.count;
+  }
+  if (e.count > 0 && median_length > 0) {
+    e.max_rel /= median_length;
+    e.rms_rel = std::sqrt(sum / static_cast<double>(e.count)) / median_length;
   }
   return e;
 }

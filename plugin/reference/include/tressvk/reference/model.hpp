@@ -25,6 +25,10 @@ inline constexpr double kFrameEdgeMinRel = 1e-3;
 // The share of the follow-the-leader move of a child that its parent receives back as velocity (DFTL, Mueller
 // et al. 2012, who recommend 0.9..1). GLSL twin: kFtlVelocityCorrection in common.glsl.
 inline constexpr double kFtlVelocityCorrection = 0.9;
+// The length solve's smallest pivot, relative to its row's diagonal: a row whose pivot falls below it (a taut strand
+// pinned at both ends, whose constraints are dependent) takes this instead, so the solve stays bounded. GLSL twin:
+// kSolvePivotMin in common.glsl.
+inline constexpr double kSolvePivotMin = 1e-6;
 // Capsule contacts deeper than this fraction of the radius lose all their inward velocity; shallower ones in
 // proportion (a continuous response). GLSL twin: kContactBand.
 inline constexpr double kContactBand = 0.02;
@@ -64,6 +68,7 @@ struct ModelRest {
   std::vector<double> follow_length;  // rest arc length of the follow (asset tip separation), for health metrics
   uint32_t group_count = 1;
   uint32_t rigid_strands = 0;  // strands pinned whole because they are shorter than kRigidStrandRel x median
+  uint32_t pinned_tip_strands = 0;  // strands with a pinned tip and a free vertex (TressFX bothEndsImmovable)
 };
 
 // Throws std::invalid_argument naming the field when the asset is inconsistent.

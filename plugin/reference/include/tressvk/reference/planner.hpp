@@ -74,10 +74,18 @@ struct FramePlan {
   uint32_t dropped_steps = 0;        // whole steps dropped by the cap in this frame
 };
 
+// The planner's limits. The defaults are the product's (TvkTimeSettings); a converged reference (docs/accuracy.md)
+// raises them, in double precision on the CPU only, to step the same model far finer than any GPU setting.
+struct PlannerLimits {
+  double max_step_rate = 480.0;                         // Hz
+  uint32_t max_steps_per_frame = TVK_MAX_STEPS_PER_FRAME;
+};
+
 class FramePlanner {
  public:
   // asset_origin: HairAsset::origin; bone_count: the asset's bone count (0 = rigid only).
-  FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count);
+  FramePlanner(const TvkSimSettings& settings, std::array<double, 3> asset_origin, uint32_t bone_count,
+               const PlannerLimits& limits = {});
 
   // Throws std::invalid_argument for bad input (negative dt, bone_count mismatch, too many capsules...).
   FramePlan plan(const TvkSimFrame& frame);
@@ -92,6 +100,7 @@ class FramePlanner {
     Quat r;
   };
   TvkSimSettings settings_;
+  PlannerLimits limits_;
   std::array<double, 3> asset_origin_;
   uint32_t bone_count_;
   double h_ = 0;
@@ -114,6 +123,11 @@ class FramePlanner {
   std::vector<std::array<std::array<double, 4>, 3>> last_rows_;  // skin maps of the last planned step
   std::vector<CapsuleSim> last_caps_;  // capsules of the last planned step (its frame)
 };
+
+// Checks every host number of a frame: dt, the transform, bone matrices, capsules and wind must be finite, rotations
+// (near-)unit quaternions, radii >= 0, counts within limits. Throws std::invalid_argument naming the field (e.g.
+// "capsules[1].r0 is not finite"). asset_bone_count: the asset's bones (0 = rigid only).
+void validate_frame(const TvkSimFrame& frame, uint32_t asset_bone_count);
 
 // Per-group parameters converted to per-step values for step length h (what both sides use).
 struct GroupStep {

@@ -24,8 +24,9 @@ class Simulator {
  public:
   // group_params: one per strand group of the asset (a single entry is used for every group).
   // Throws std::invalid_argument for an inconsistent asset or out-of-range parameters.
+  // limits: the planner's; raised only for a converged reference (step rates beyond what the GPU is given).
   Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
-            const TvkSimSettings& settings);
+            const TvkSimSettings& settings, const PlannerLimits& limits = {});
 
   void set_params(std::span<const TvkSimParams> group_params);
   const std::vector<TvkSimParams>& params() const { return params_; }
@@ -81,6 +82,9 @@ class Simulator {
   bool skinned_ = false;  // the current substep blends bones
   std::vector<Vec3> pos_, prev_, prevprev_, tangent_;
   uint64_t nonfinite_resets_ = 0;
+  // The length solve of strands pinned at both ends (solve_tip_pinned): per segment, c' and d' (then lambda).
+  void solve_tip_pinned(size_t strand_base);
+  std::vector<double> seg_cp_, seg_dp_;
 };
 
 }  // namespace tressvk::reference

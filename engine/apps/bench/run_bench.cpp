@@ -1,0 +1,210 @@
+#include "run_bench.hpp"
+
+#include <tressvk/asset_io.hpp>
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/engine/device.hpp>
+#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/reference/scenes.hpp>
+#include <tressvk/reference/simulator.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace tressvk::bench {
+namespace {
+
+void check_tvk(TvkResult r, TvkContext ctx, const char* what) {
+  if (r != TVK_SUCCESS)
+    throw std::runtime_error(std::string(what) + ": " + tressvk_result_string(r) + ": " + tressvk_last_error(ctx));
+}
+
+// Shortest text that reads back as the same double.
+void put_number(std::string& out, double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.17g", v);
+  out += buf;
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, RunCommand& cmd) {
+  CLI::App* run = app.add_subcommand(
+      "run", "simulate a groom in a scene on the GPU and dump the guides' world positions (metres) as JSON");
+  cmd.app = run;
+  auto* source = run->add_option_group("groom");
+  source->add_option("--asset", cmd.asset_path, "a baked .tvkhair file");
+  source->add_option("--builtin", cmd.builtin, "a procedural groom: straight, curly or long128");
+  source->require_option(1);
+  run->add_option("--scene", cmd.scene, "settle (head still, gravity on), shake, run, teleport, wind, hitch or far")
+      ->capture_default_str();
+  run->add_option("--frames", cmd.frames, "frames of 1/60 s")->capture_default_str();
+  run->add_option("--step-rate", cmd.settings.time.step_rate, "simulation steps per second")->capture_default_str();
+  run->add_option("--local-iterations", cmd.params.local_iterations)->capture_default_str();
+  run->add_option("--length-iterations", cmd.params.length_iterations)->capture_default_str();
+  run->add_option("--guides", cmd.guides, "guides of a built-in groom")->capture_default_str();
+  run->add_option("--vertices", cmd.vertices, "vertices per strand of a built-in groom (0 = its default)");
+  run->add_option("--dump", cmd.dump_path, "the JSON file to write")->required();
+  run->add_option("--dump-every", cmd.dump_every, "write every Kth frame (the last frame always)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  run->add_option("--device", cmd.device, "device index or name substring (default: discrete GPU first)");
+  run->add_flag("--validation", cmd.validation,
+                "enable the Vulkan validation layer with synchronization validation; any message fails the run");
+}
+
+int execute_run_command(const RunCommand& cmd) {
+  const auto names = reference::scene_names();
+  if (std::find(names.begin(), names.end(), cmd.scene) == names.end()) {
+    std::fprintf(stderr, "tressvk-bench run: --scene: unknown scene '%s'\n", cmd.scene.c_str());
+    return 1;
+  }
+  if (cmd.frames == 0) {
+    std::fprintf(stderr, "tressvk-bench run: --frames must be at least 1\n");
+    return 1;
+  }
+  asset::HairAsset groom;
+  try {
+    if (!cmd.asset_path.empty()) {
+      asset::ReadResult read = asset::read_file(cmd.asset_path);
+      if (!read.ok()) {
+        std::fprintf(stderr, "tressvk-bench run: --asset %s: %s\n", cmd.asset_path.c_str(), read.error.c_str());
+        return 1;
+      }
+      groom = std::move(read.asset);
+    } else {
+      baker::BuiltinGroomOptions o;
+      o.guide_count = cmd.guides;
+      o.vertices_per_strand = cmd.vertices;
+      groom = baker::make_builtin_groom(cmd.builtin, o);
+    }
+    // Parameters checked the way the plugin checks them (the message names the field).
+    reference::to_group_step(cmd.params, 1.0 / 240.0, groom.tip_separation);
+    reference::FramePlanner(cmd.settings, groom.origin, 0);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tressvk-bench run: %s\n", e.what());
+    return 1;
+  }
+
+  std::string json;
+  try {
+    engine::DeviceOptions dopt;
+    dopt.app_name = "tressvk-bench";
+    dopt.device = cmd.device;
+    dopt.validation = cmd.validation;
+    dopt.sync_validation = cmd.validation;
+    engine::Device dev(dopt);
+    TvkContextCreateInfo ci = dev.plugin_context_info();
+    ci.frames_in_flight = 1;
+    TvkContext ctx = nullptr;
+    check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+    const std::vector<std::byte> bytes = asset::write(groom);
+    TvkAsset asset = nullptr;
+    dev.run_commands([&](VkCommandBuffer c) {
+      TvkAssetLoadInfo li{};
+      li.struct_size = sizeof(li);
+      li.data = bytes.data();
+      li.size = bytes.size();
+      li.upload_command_buffer = c;
+      check_tvk(tressvk_load_asset(ctx, &li, &asset), ctx, "tressvk_load_asset");
+    });
+    TvkInstanceCreateInfo ic{};
+    ic.struct_size = sizeof(ic);
+    ic.asset = asset;
+    ic.settings = &cmd.settings;
+    ic.params = &cmd.params;
+    TvkInstance inst = nullptr;
+    check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+    for (uint32_t g = 0; g < std::max<size_t>(1, groom.groups.size()); ++g)
+      check_tvk(tressvk_set_sim_params(inst, g, &cmd.params), ctx, "tressvk_set_sim_params");
+
+    reference::Simulator probe(groom, std::span<const TvkSimParams>(&cmd.params, 1), cmd.settings);
+    const reference::SceneGeometry geometry = reference::scene_geometry(probe.rest());
+    const size_t guide_vertices = groom.rest_positions.size();
+    const uint32_t n = groom.vertices_per_strand;
+    json = "{\"groom\": \"" + (cmd.asset_path.empty() ? cmd.builtin : std::filesystem::path(cmd.asset_path).filename().string()) +
+           "\", \"scene\": \"" + cmd.scene + "\", \"step_rate_hz\": ";
+    put_number(json, cmd.settings.time.step_rate);
+    json += ", \"local_iterations\": " + std::to_string(cmd.params.local_iterations) +
+            ", \"length_iterations\": " + std::to_string(cmd.params.length_iterations) +
+            ", \"vertices_per_strand\": " + std::to_string(n) + ", \"units\": \"m\", \"frames\": [";
+    bool first_frame = true;
+    double time = 0;
+    for (uint32_t f = 0; f < cmd.frames; ++f) {
+      const TvkSimFrame frame = reference::scene_frame(cmd.scene, f, geometry);
+      time += static_cast<double>(frame.dt);
+      check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+      check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      dev.run_commands([&](VkCommandBuffer c) {
+        TvkSimulateInfo si{};
+        si.struct_size = sizeof(si);
+        si.instance_count = 1;
+        si.instances = &inst;
+        check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
+      });
+      if (f % cmd.dump_every != 0 && f + 1 != cmd.frames) continue;
+      const engine::HairState state = engine::read_hair_state(dev, inst);
+      TvkInstanceBuffers buffers{};
+      check_tvk(tressvk_get_instance_buffers(inst, &buffers), ctx, "tressvk_get_instance_buffers");
+      json += first_frame ? "\n" : ",\n";
+      first_frame = false;
+      json += "{\"frame\": " + std::to_string(f) + ", \"time_s\": ";
+      put_number(json, time);
+      json += ", \"strands\": [";
+      for (size_t i = 0; i < guide_vertices; ++i) {
+        const size_t v = i % n;
+        json += v == 0 ? (i == 0 ? "[" : ", [") : ", ";
+        json += "[";
+        for (int k = 0; k < 3; ++k) {
+          if (k) json += ", ";
+          put_number(json, buffers.origin[k] + state.positions[i][static_cast<size_t>(k)]);
+        }
+        json += "]";
+        if (v + 1 == n) json += "]";
+      }
+      json += "]}";
+    }
+    json += "\n]}\n";
+    dev.wait_idle();
+    tressvk_destroy_instance(inst);
+    tressvk_destroy_asset(asset);
+    tressvk_destroy_context(ctx);
+    if (cmd.validation) {
+      const uint64_t messages = dev.messages().count();
+      std::printf("validation: %llu message(s)\n", static_cast<unsigned long long>(messages));
+      if (messages > 0) {
+        std::fprintf(stderr, "tressvk-bench run: validation messages: nothing written\n");
+        return 2;
+      }
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tressvk-bench run: %s\n", e.what());
+    return 2;
+  }
+  // Written only once the whole run succeeded: no partial output.
+  const std::string tmp = cmd.dump_path + ".partial";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << json;
+    if (!out) {
+      std::fprintf(stderr, "tressvk-bench run: --dump %s: cannot write\n", cmd.dump_path.c_str());
+      std::filesystem::remove(tmp);
+      return 2;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, cmd.dump_path, ec);
+  if (ec) {
+    std::fprintf(stderr, "tressvk-bench run: --dump %s: %s\n", cmd.dump_path.c_str(), ec.message().c_str());
+    std::filesystem::remove(tmp);
+    return 2;
+  }
+  std::printf("tressvk-bench run: %u frames of %s in '%s' -> %s\n", cmd.frames,
+              cmd.asset_path.empty() ? cmd.builtin.c_str() : cmd.asset_path.c_str(), cmd.scene.c_str(),
+              cmd.dump_path.c_str());
+  return 0;
+}
+
+}  // namespace tressvk::bench

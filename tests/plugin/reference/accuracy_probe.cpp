@@ -1,0 +1,83 @@
+// Prints the model-accuracy numbers docs/accuracy.md quotes, from the double reference: the hanging chain's period and
+// decay per period (N x step rate x length sweeps), the cantilever's tip sag (N x step rate x local iterations) and
+// the convergence of a shaken strand's trajectory as the step rate doubles. A diagnostic, not a test.
+//   tressvk_accuracy_probe [chain|cantilever|convergence]...
+#include <cstdio>
+#include <cstring>
+
+#include "analytic.hpp"
+#include "helpers.hpp"
+
+using namespace tvk_analytic;
+
+namespace {
+
+void chain() {
+  std::printf("# hanging chain L 0.3 m, damping 0: period error vs the discrete chain, amplitude kept per period\n");
+  std::printf("N,rate_hz,length_iterations,period_s,expected_s,error,kept_per_period\n");
+  for (uint32_t n : {16u, 32u, 64u})
+    for (double rate : {60.0, 120.0, 240.0, 480.0})
+      for (uint32_t li : {1u, 2u}) {
+        const SwingResult r = swing(reference_factory(), n, rate, 0.0f, 9.0, 0.3, 0.003, li);
+        const double e = chain_first_mode(n, 0.3).period;
+        std::printf("%u,%.0f,%u,%.4f,%.4f,%+.4f,%.4f\n", n, rate, li, r.period, e, r.period / e - 1.0, r.amplitude_ratio);
+      }
+}
+
+// Tip sag of a horizontal strand (L 0.2 m, 2 root vertices clamped, defaults) after 10 s under gravity.
+double cantilever_sag(uint32_t n, double rate, uint32_t iterations) {
+  std::vector<Vec3> pts;
+  for (uint32_t v = 0; v < n; ++v) pts.push_back({0.2 * v / (n - 1), 0, 0});
+  TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
+  p.local_iterations = iterations;
+  auto run = reference_factory()(strand_asset(pts, 2), p, settings_at(rate));
+  for (uint32_t f = 0; f < 600; ++f) run->frame(still_frame());
+  const std::vector<Vec3> x = run->positions();
+  return x.front().y - x.back().y;
+}
+
+void cantilever() {
+  std::printf("# cantilever L 0.2 m, defaults: tip sag (mm) after 10 s\n");
+  std::printf("N,rate_hz,local_iterations,sag_mm\n");
+  for (uint32_t n : {16u, 32u, 64u, 128u}) std::printf("%u,240,2,%.2f\n", n, 1e3 * cantilever_sag(n, 240, 2));
+  for (double rate : {60.0, 120.0, 480.0}) std::printf("32,%.0f,2,%.2f\n", rate, 1e3 * cantilever_sag(32, rate, 2));
+  for (uint32_t it : {1u, 4u, 8u}) std::printf("32,240,%u,%.2f\n", it, 1e3 * cantilever_sag(32, 240, it));
+}
+
+// Richardson-style halving: the trajectory distance between step rates r and 2r (rms and max over 30 frames and
+// every guide vertex, / median length), up to 3840 Hz on the CPU, per groom and scene, as a chain (shape terms off)
+// and at the defaults.
+void convergence() {
+  std::printf("# trajectory distance between rate r and 2r over 30 frames (/ median strand length)\n");
+  std::printf("groom,scene,params,rate_hz,rms,max\n");
+  for (const char* groom : {"straight", "curly"})
+    for (const char* scene : {"settle", "shake"})
+      for (int chain_only = 1; chain_only >= 0; --chain_only) {
+        TvkSimParams p = chain_only ? chain_params() : TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT;
+        if (chain_only) p.damping = 0.08f;
+        const auto a = tvk_test::groom(groom, 8);
+        double median = 0;
+        std::vector<std::vector<std::vector<Vec3>>> runs;
+        const std::vector<double> rates = {240.0, 480.0, 960.0, 1920.0, 3840.0};
+        for (double r : rates) runs.push_back(trajectory(a, p, r, scene, 30, &median));
+        for (size_t k = 0; k + 1 < runs.size(); ++k) {
+          const auto e = tressvk::reference::trajectory_error(runs[k], runs[k + 1], median);
+          std::printf("%s,%s,%s,%.0f,%.3e,%.3e\n", groom, scene, chain_only ? "chain" : "defaults", rates[k], e.rms_rel,
+                      e.max_rel);
+        }
+      }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc || argc == 1; ++i) {
+    const char* what = argc == 1 ? "all" : argv[i];
+    const bool all = std::strcmp(what, "all") == 0;
+    if (all || std::strcmp(what, "chain") == 0) chain();
+    if (all || std::strcmp(what, "cantilever") == 0) cantilever();
+    if (all || std::strcmp(what, "convergence") == 0) convergence();
+    if (argc == 1) break;
+  }
+  return 0;
+}
