@@ -42,5 +42,10 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("replayed %zu input(s) without a finding\n", count);
+  // A replay that found nothing to replay proves nothing (a moved or misspelt directory).
+  if (count == 0) {
+    std::fprintf(stderr, "no input found in the arguments\n");
+    return 1;
+  }
   return 0;
 }
