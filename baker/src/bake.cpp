@@ -178,7 +178,9 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
     throw InputError("--scale must be a positive finite number");
   if (!std::isfinite(o.tip_separation) || o.tip_separation < 0)
     throw InputError("--tip-separation must be a finite number >= 0");
-  if (o.follow_per_guide > 64) throw InputError("--follow " + std::to_string(o.follow_per_guide) + " exceeds 64");
+  if (o.follow_per_guide > asset::kMaxFollowPerGuide)
+    throw InputError("--follow " + std::to_string(o.follow_per_guide) + " exceeds " +
+                     std::to_string(asset::kMaxFollowPerGuide));
   BakeReport rep;
   rep.input_strands = groom.strand_count() + groom.skipped_invalid;
   rep.input_vertices = groom.input_vertices ? groom.input_vertices : groom.points.size();
@@ -246,7 +248,11 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
   }
   if (kept.empty()) throw InputError("no strand is left to bake (all " + std::to_string(strands) +
                                      " strands are degenerate or shorter than the length threshold)");
-  if (kept.size() > (uint64_t{1} << 31) / n) throw InputError("too many strands for one asset");
+  if (kept.size() > asset::kMaxRenderedVertices / (uint64_t{n} * (1 + o.follow_per_guide)))
+    throw InputError("too many strands for one asset: " + std::to_string(kept.size()) + " guides x (1 + " +
+                     std::to_string(o.follow_per_guide) + " follows) x " + std::to_string(n) +
+                     " vertices exceeds the limit of " + std::to_string(asset::kMaxRenderedVertices) +
+                     " rendered vertices");
 
   // 4. Level-of-detail order (see lod_order).
   if (o.shuffle) kept = lod_order(kept, clean, begin, o.seed);
