@@ -4,6 +4,7 @@
 //   tressvk-bench compare --builtin curly --scene shake --frames 300 --json out.json
 //   tressvk-bench compare --asset mohawk.tvkhair --scene run
 #include "bench.hpp"
+#include "soak_bench.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
@@ -120,7 +121,16 @@ int main(int argc, char** argv) {
   compare->add_flag("--table-row", table_row, "print one Markdown table row instead of the report");
   bool validation = false;
   compare->add_flag("--validation", validation, "enable the Vulkan validation layer");
+  CLI::App* soak = bench::add_soak_subcommand(app);
   CLI11_PARSE(app, argc, argv);
+  if (soak->parsed()) {
+    try {
+      return bench::run_soak();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "tressvk-bench soak: %s\n", e.what());
+      return 2;
+    }
+  }
 
   o.trajectory = !no_trajectory;
   try {
