@@ -49,6 +49,11 @@ struct Walk {
     // The message names the API call, or the Vulkan call and its VkResult (e.g. "vkCreateBuffer ... failed:
     // VK_ERROR_OUT_OF_HOST_MEMORY"; buffer allocations name the buffer).
     CHECK((message.find(name) != std::string::npos || message.find("VK_ERROR_") != std::string::npos));
+    // Descriptor allocation fails with VK_ERROR_OUT_OF_POOL_MEMORY, which the message names.
+    if (failed_call == "vkAllocateDescriptorSets") {
+      CHECK(message.find("VK_ERROR_OUT_OF_POOL_MEMORY") != std::string::npos);
+      CHECK(r == TVK_ERROR_OUT_OF_MEMORY);
+    }
     control.arm(0);
     REQUIRE(f() == TVK_SUCCESS);  // the host retries the same call
   }
