@@ -3,6 +3,7 @@
 // asset pinned by a half-made instance -- so the host can fix the input and call again. Also the host contract
 // under misuse (objects of another context, an asset destroyed while instances use it, wrong struct_size).
 // Leaks of host memory are caught by running these tests under ASan as well (the sanitize preset).
+#include "leak_check.hpp"
 #include "sim_harness.hpp"
 
 #include <tressvk/asset_io.hpp>
@@ -80,6 +81,7 @@ TEST_CASE("tressvk_create_context refuses bad settings naming the field, with th
   TvkContext ctx = nullptr;
   REQUIRE(tressvk_create_context(&info, &ctx) == TVK_SUCCESS);
   tressvk_destroy_context(ctx);
+  test::check_no_host_leaks();
 }
 
 TEST_CASE("tressvk_create_instance with bad settings leaks nothing and does not pin the asset", "[plugin][errors]") {
@@ -124,6 +126,8 @@ TEST_CASE("tressvk_create_instance with bad settings leaks nothing and does not 
   tressvk_destroy_asset(a);
   retire(ctx.get());
   CHECK(allocations(ctx.get()) == 0);
+  ctx.reset();
+  test::check_no_host_leaks();
 }
 
 TEST_CASE("tressvk_load_asset failures name the field and leave nothing behind", "[plugin][errors]") {
@@ -169,6 +173,8 @@ TEST_CASE("tressvk_load_asset failures name the field and leave nothing behind",
   tressvk_destroy_asset(a);
   retire(ctx.get());
   CHECK(allocations(ctx.get()) == 0);
+  ctx.reset();
+  test::check_no_host_leaks();
 }
 
 TEST_CASE("host misuse gets a clear error: objects of another context, wrong struct_size", "[plugin][errors]") {
@@ -215,6 +221,9 @@ TEST_CASE("host misuse gets a clear error: objects of another context, wrong str
   tressvk_destroy_asset(a);
   retire(ctx.get());
   CHECK(allocations(ctx.get()) == 0);
+  ctx.reset();
+  other.reset();
+  test::check_no_host_leaks();
 }
 
 TEST_CASE("an asset destroyed while an instance uses it lives on until the instance goes", "[plugin][errors]") {
@@ -234,4 +243,6 @@ TEST_CASE("an asset destroyed while an instance uses it lives on until the insta
   }
   retire(ctx.get());
   CHECK(allocations(ctx.get()) == 0);
+  ctx.reset();
+  test::check_no_host_leaks();
 }

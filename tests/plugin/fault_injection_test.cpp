@@ -4,6 +4,7 @@
 // return a TvkResult error with a message, leave no validation message (the fixture fails the test on any), leak
 // no GPU allocation, and the host must be able to retry that same call and finish the lifecycle. The hook is a
 // private link of TvkContextCreateInfo::next (plugin/src/fault_injection.hpp), not part of the public API.
+#include "leak_check.hpp"
 #include "sim_harness.hpp"
 
 #include "fault_injection.hpp"
@@ -183,6 +184,7 @@ TEST_CASE("every fallible Vulkan call of the lifecycle can fail: error, message,
                 w.message.c_str());
   }
   for (const auto& [call, count] : per_call) std::printf("  %-40s failed %d time(s)\n", call.c_str(), count);
+  test::check_no_host_leaks();
   std::printf("%llu fallible calls, each failed once: %d surfaced as a TvkResult error, %d absorbed\n",
               static_cast<unsigned long long>(total), static_cast<int>(total) - absorbed, absorbed);
 }
