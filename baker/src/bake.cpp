@@ -303,6 +303,12 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
     const bool pin_tip = groom.strand_pin_tip[kept[k]] != 0;
     for (uint32_t v = 0; v < n; ++v) {
       const Vec3 rel = resampled[v] - origin;
+      // float32 must hold the position and every length and edge made from two of them (|a - b| <= 2 sqrt(3) max).
+      constexpr double kMaxCoordinate = std::numeric_limits<float>::max() / 8.0;
+      if (!(std::abs(rel[0]) < kMaxCoordinate && std::abs(rel[1]) < kMaxCoordinate && std::abs(rel[2]) < kMaxCoordinate))
+        throw InputError("strand " + std::to_string(kept[k]) + ": a vertex lies " + std::to_string(length(rel)) +
+                         " m from the asset origin, beyond what float32 holds (check --units/--scale and for "
+                         "stray far-away vertices)");
       const std::array<float, 3> f{static_cast<float>(rel[0]), static_cast<float>(rel[1]), static_cast<float>(rel[2])};
       p[v] = {f[0], f[1], f[2]};
       const bool pinned = v < pin || (pin_tip && v + pin >= n);
