@@ -76,7 +76,7 @@ printf '%-12s %12s %8s %8s %10s %s\n' target executions cov ft peak_rss result |
 for t in "${TARGETS[@]}"; do
   log=$OUT/$t.log
   execs=$(grep -oE 'stat::number_of_executed_units: [0-9]+' "$log" | tail -1 | grep -oE '[0-9]+$' || echo "?")
-  rss=$(grep -oE 'stat::peak_rss_mb: [0-9]+' "$log" | tail -1 | grep -oE '[0-9]+$' || echo "?")
+  rss=$(grep -oE 'stat::peak_rss_mb: *[0-9]+' "$log" | tail -1 | grep -oE '[0-9]+$' || echo "?")
   cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -1 | grep -oE '[0-9]+$' || echo "?")
   ft=$(grep -oE 'ft: [0-9]+' "$log" | tail -1 | grep -oE '[0-9]+$' || echo "?")
   result=ok

@@ -135,7 +135,13 @@ std::vector<uint32_t> lod_order(const std::vector<uint32_t>& kept, const std::ve
   for (size_t i = 0; i < g; ++i) {
     const Vec3& r = pts[begin[kept[i]]];
     uint64_t m = 0;
-    for (size_t a = 0; a < 3; ++a) m |= spread_bits(static_cast<uint64_t>((r[a] - lo[a]) * q)) << a;
+    for (size_t a = 0; a < 3; ++a) {
+      // A subnormal extent makes q infinite and 0 * q NaN: clamp before the cast (same keys otherwise).
+      double c = (r[a] - lo[a]) * q;
+      if (!(c >= 0.0)) c = 0.0;
+      if (c > static_cast<double>(0x1FFFFF)) c = static_cast<double>(0x1FFFFF);
+      m |= spread_bits(static_cast<uint64_t>(c)) << a;
+    }
     keys[i] = {m, rng.next(), kept[i]};
   }
   std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
