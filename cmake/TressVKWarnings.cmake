@@ -15,6 +15,14 @@ if(TRESSVK_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+if(TRESSVK_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "TRESSVK_FUZZ needs clang (libFuzzer): use the `fuzz` preset")
+  endif()
+  # Coverage feedback from every library, not only the fuzz targets' own files.
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()
+
 if(TRESSVK_PORTABLE)
   # A Debian 12 binary that runs on other glibc >= 2.34 systems: static libstdc++ (not libgcc, which would pull
   # in a GLIBC_2.35 symbol) and a local arc4random (cmake/portable/arc4random.c), which libstdc++.a's random.o

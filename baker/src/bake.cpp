@@ -135,7 +135,13 @@ std::vector<uint32_t> lod_order(const std::vector<uint32_t>& kept, const std::ve
   for (size_t i = 0; i < g; ++i) {
     const Vec3& r = pts[begin[kept[i]]];
     uint64_t m = 0;
-    for (size_t a = 0; a < 3; ++a) m |= spread_bits(static_cast<uint64_t>((r[a] - lo[a]) * q)) << a;
+    for (size_t a = 0; a < 3; ++a) {
+      // A subnormal extent makes q infinite and 0 * q NaN: clamp before the cast (same keys otherwise).
+      double c = (r[a] - lo[a]) * q;
+      if (!(c >= 0.0)) c = 0.0;
+      if (c > static_cast<double>(0x1FFFFF)) c = static_cast<double>(0x1FFFFF);
+      m |= spread_bits(static_cast<uint64_t>(c)) << a;
+    }
     keys[i] = {m, rng.next(), kept[i]};
   }
   std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
@@ -178,7 +184,9 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
     throw InputError("--scale must be a positive finite number");
   if (!std::isfinite(o.tip_separation) || o.tip_separation < 0)
     throw InputError("--tip-separation must be a finite number >= 0");
-  if (o.follow_per_guide > 64) throw InputError("--follow " + std::to_string(o.follow_per_guide) + " exceeds 64");
+  if (o.follow_per_guide > asset::kMaxFollowPerGuide)
+    throw InputError("--follow " + std::to_string(o.follow_per_guide) + " exceeds " +
+                     std::to_string(asset::kMaxFollowPerGuide));
   BakeReport rep;
   rep.input_strands = groom.strand_count() + groom.skipped_invalid;
   rep.input_vertices = groom.input_vertices ? groom.input_vertices : groom.points.size();
@@ -246,7 +254,11 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
   }
   if (kept.empty()) throw InputError("no strand is left to bake (all " + std::to_string(strands) +
                                      " strands are degenerate or shorter than the length threshold)");
-  if (kept.size() > (uint64_t{1} << 31) / n) throw InputError("too many strands for one asset");
+  if (kept.size() > asset::kMaxRenderedVertices / (uint64_t{n} * (1 + o.follow_per_guide)))
+    throw InputError("too many strands for one asset: " + std::to_string(kept.size()) + " guides x (1 + " +
+                     std::to_string(o.follow_per_guide) + " follows) x " + std::to_string(n) +
+                     " vertices exceeds the limit of " + std::to_string(asset::kMaxRenderedVertices) +
+                     " rendered vertices");
 
   // 4. Level-of-detail order (see lod_order).
   if (o.shuffle) kept = lod_order(kept, clean, begin, o.seed);
@@ -297,6 +309,12 @@ asset::HairAsset bake(const RawGroom& groom, const BakeOptions& o, BakeReport* r
     const bool pin_tip = groom.strand_pin_tip[kept[k]] != 0;
     for (uint32_t v = 0; v < n; ++v) {
       const Vec3 rel = resampled[v] - origin;
+      // float32 must hold the position and every length and edge made from two of them (|a - b| <= 2 sqrt(3) max).
+      constexpr double kMaxCoordinate = std::numeric_limits<float>::max() / 8.0;
+      if (!(std::abs(rel[0]) < kMaxCoordinate && std::abs(rel[1]) < kMaxCoordinate && std::abs(rel[2]) < kMaxCoordinate))
+        throw InputError("strand " + std::to_string(kept[k]) + ": a vertex lies " + std::to_string(length(rel)) +
+                         " m from the asset origin, beyond what float32 holds (check --units/--scale and for "
+                         "stray far-away vertices)");
       const std::array<float, 3> f{static_cast<float>(rel[0]), static_cast<float>(rel[1]), static_cast<float>(rel[2])};
       p[v] = {f[0], f[1], f[2]};
       const bool pinned = v < pin || (pin_tip && v + pin >= n);

@@ -34,6 +34,14 @@ double distance_sq_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return std::min({distance_sq_to_segment(p, a, b), distance_sq_to_segment(p, b, c), distance_sq_to_segment(p, c, a)});
 }
 
+// floor/ceil results clamped to [lo, hi] before the conversion to int: a coordinate far outside the grid (or an
+// extent that overflows to infinity for coordinates near the double range) must not overflow the cast (UB).
+int clamp_to_int(double v, int lo, int hi) {
+  if (!(v > lo)) return lo;  // also NaN
+  if (v >= hi) return hi;
+  return static_cast<int>(v);
+}
+
 // Uniform grid over the scalp's triangles (each listed in every cell its bounding box touches), searched in
 // growing shells of cells around the query point until no unvisited cell can hold anything nearer. Turns the
 // O(strands x triangles) brute force into roughly O(strands) for real scalps.
@@ -52,7 +60,7 @@ class TriangleGrid {
     // About one triangle per cell along the largest axis: cbrt(T) cells there, at most 128.
     const double per_axis = std::clamp(std::cbrt(static_cast<double>(m.triangles.size())), 1.0, 128.0);
     h_ = extent / per_axis;
-    for (size_t a = 0; a < 3; ++a) dims_[a] = std::clamp(static_cast<int>(std::ceil((hi[a] - lo_[a]) / h_)), 1, 128);
+    for (size_t a = 0; a < 3; ++a) dims_[a] = clamp_to_int(std::ceil((hi[a] - lo_[a]) / h_), 1, 128);
     std::vector<uint32_t> counts(cell_count() + 1, 0);
     for_each_cell_of_triangles([&](size_t cell, uint32_t) { ++counts[cell + 1]; });
     for (size_t c = 1; c < counts.size(); ++c) counts[c] += counts[c - 1];
@@ -146,7 +154,7 @@ class TriangleGrid {
 
  private:
   int cell_coord(double v, size_t a) const {
-    return std::clamp(static_cast<int>(std::floor((v - lo_[a]) / h_)), 0, dims_[a] - 1);
+    return clamp_to_int(std::floor((v - lo_[a]) / h_), 0, dims_[a] - 1);
   }
   size_t cell_count() const { return static_cast<size_t>(dims_[0]) * dims_[1] * dims_[2]; }
   size_t index(int x, int y, int z) const {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <memory>
 #include <new>
 #include <span>
 
@@ -41,12 +42,13 @@ TvkResult upload_statics(Context& ctx, TvkAsset_T& a, VkCommandBuffer cmd) {
     offsets[i] = total;
     total += (sections[i].size() + 255) & ~VkDeviceSize{255};
   }
+  // Every buffer is made and filled before anything is recorded: a failure then leaves the host's command buffer
+  // untouched, so the host can submit it (or retry the load) without referencing a destroyed buffer.
   GpuBuffer staging;
   if (TvkResult r = create_buffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::host_upload,
                                   "asset upload staging", staging);
       r != TVK_SUCCESS)
     return r;
-  std::vector<VkBufferMemoryBarrier2> barriers;
   for (size_t i = 0; i < sections.size(); ++i) {
     if (TvkResult r = create_buffer(ctx, sections[i].size(),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -56,8 +58,17 @@ TvkResult upload_statics(Context& ctx, TvkAsset_T& a, VkCommandBuffer cmd) {
       return r;
     }
     std::memcpy(static_cast<std::byte*>(staging.mapped) + offsets[i], sections[i].data(), sections[i].size());
+  }
+  if (TvkResult r = ctx.check(vmaFlushAllocation(ctx.allocator, staging.allocation, 0, VK_WHOLE_SIZE),
+                              "vmaFlushAllocation (asset upload staging)");
+      r != TVK_SUCCESS) {
+    destroy_buffer(ctx, staging);
+    return r;
+  }
+  std::vector<VkBufferMemoryBarrier2> barriers;
+  for (size_t i = 0; i < sections.size(); ++i) {
     const VkBufferCopy region{offsets[i], 0, sections[i].size()};
-    ctx.vk.vkCmdCopyBuffer(cmd, staging.buffer, a.statics[i].buffer, 1, &region);
+    if (region.size) ctx.vk.vkCmdCopyBuffer(cmd, staging.buffer, a.statics[i].buffer, 1, &region);
     VkBufferMemoryBarrier2 b{};
     b.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2;
     b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
@@ -69,7 +80,6 @@ TvkResult upload_statics(Context& ctx, TvkAsset_T& a, VkCommandBuffer cmd) {
     b.size = VK_WHOLE_SIZE;
     barriers.push_back(b);
   }
-  vmaFlushAllocation(ctx.allocator, staging.allocation, 0, VK_WHOLE_SIZE);
   VkDependencyInfo dep{};
   dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
   dep.bufferMemoryBarrierCount = static_cast<uint32_t>(barriers.size());
@@ -84,18 +94,21 @@ TvkResult upload_statics(Context& ctx, TvkAsset_T& a, VkCommandBuffer cmd) {
 extern "C" {
 
 TvkResult tressvk_load_asset(TvkContext context, const TvkAssetLoadInfo* info, TvkAsset* out_asset) {
-  if (!out_asset) return TVK_ERROR_INVALID_ARGUMENT;
-  *out_asset = nullptr;
-  if (!context) return TVK_ERROR_INVALID_ARGUMENT;
+  constexpr const char* kCall = "tressvk_load_asset";
+  if (out_asset) *out_asset = nullptr;
+  if (!context) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "%s: context is NULL", kCall);
   Context& ctx = *context;
-  if (!info || info->struct_size != sizeof(TvkAssetLoadInfo))
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_load_asset: info is NULL or struct_size is wrong");
-  if (!info->upload_command_buffer)
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_load_asset: upload_command_buffer is VK_NULL_HANDLE");
-  if (!info->path && (!info->data || info->size == 0))
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_load_asset: neither path nor data given");
+  return tressvk::guarded(ctx, kCall, [&]() -> TvkResult {
+    if (!out_asset) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: out_asset is NULL", kCall);
+    if (!info) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: info is NULL", kCall);
+    if (info->struct_size != sizeof(TvkAssetLoadInfo))
+      return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: struct_size is %zu, expected %zu", kCall, info->struct_size,
+                      sizeof(TvkAssetLoadInfo));
+    if (!info->upload_command_buffer)
+      return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: upload_command_buffer is VK_NULL_HANDLE", kCall);
+    if (!info->path && (!info->data || info->size == 0))
+      return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: neither path nor data (with size > 0) given", kCall);
 
-  try {
     tressvk::asset::ReadResult read =
         info->path ? tressvk::asset::read_file(info->path)
                    : tressvk::asset::read(std::span<const std::byte>(static_cast<const std::byte*>(info->data),
@@ -107,25 +120,25 @@ TvkResult tressvk_load_asset(TvkContext context, const TvkAssetLoadInfo* info, T
       if (read.error.find(source) != std::string::npos) return ctx.fail(code, "%s", read.error.c_str());
       return ctx.fail(code, "%s: %s", source, read.error.c_str());
     }
-    auto* a = new TvkAsset_T();
+    // Owned until handed to the host; buffers made before a failure are destroyed at once (upload_statics
+    // records nothing until every buffer exists).
+    struct FreeNow {
+      void operator()(TvkAsset_T* a) const {
+        for (GpuBuffer& b : a->statics) destroy_buffer(*a->ctx, b);
+        delete a;
+      }
+    };
+    std::unique_ptr<TvkAsset_T, FreeNow> a(new TvkAsset_T());
     a->ctx = &ctx;
     a->cpu = std::move(read.asset);
     a->rest = tressvk::reference::build_model_rest(a->cpu);
     a->median_strand_length = static_cast<float>(tressvk::reference::median_strand_length(a->rest));
-    if (TvkResult r = upload_statics(ctx, *a, info->upload_command_buffer); r != TVK_SUCCESS) {
-      for (GpuBuffer& b : a->statics) destroy_buffer(ctx, b);
-      delete a;
-      return r;
-    }
+    if (TvkResult r = upload_statics(ctx, *a, info->upload_command_buffer); r != TVK_SUCCESS) return r;
     ctx.message(TVK_MESSAGE_INFO, "loaded %s: %u guides x %u vertices, %u follows per guide", source,
                 a->rest.guide_count, a->rest.vertices_per_strand, a->rest.follow_per_guide);
-    *out_asset = a;
+    *out_asset = a.release();
     return TVK_SUCCESS;
-  } catch (const std::bad_alloc&) {
-    return ctx.fail(TVK_ERROR_OUT_OF_MEMORY, "tressvk_load_asset: out of host memory");
-  } catch (const std::exception& e) {
-    return ctx.fail(TVK_ERROR_INVALID_ASSET, "tressvk_load_asset: %s", e.what());
-  }
+  });
 }
 
 void tressvk_destroy_asset(TvkAsset asset) {
@@ -133,7 +146,8 @@ void tressvk_destroy_asset(TvkAsset asset) {
 }
 
 TvkResult tressvk_get_asset_info(TvkAsset asset, TvkAssetInfo* out) {
-  if (!asset || !out) return TVK_ERROR_INVALID_ARGUMENT;
+  if (!asset) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_asset_info: asset is NULL");
+  if (!out) return asset->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_asset_info: out_info is NULL");
   *out = TvkAssetInfo{};
   out->guide_count = asset->rest.guide_count;
   out->follow_per_guide = asset->rest.follow_per_guide;

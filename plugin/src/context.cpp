@@ -1,8 +1,11 @@
 #include "context.hpp"
+#include "fault_injection.hpp"
 #include "objects.hpp"
 
 #include <cstdio>
+#include <memory>
 #include <new>
+#include <string>
 
 namespace tressvk {
 
@@ -18,12 +21,31 @@ std::string vformat(const char* format, va_list args) {
 }
 }  // namespace
 
+thread_local std::string g_error_without_context;
+
 TvkResult Context::fail(TvkResult result, const char* format, ...) {
-  va_list args;
-  va_start(args, format);
-  last_error = vformat(format, args);
-  va_end(args);
+  ++error_serial;
+  try {
+    va_list args;
+    va_start(args, format);
+    last_error = vformat(format, args);
+    va_end(args);
+  } catch (const std::bad_alloc&) {
+    last_error.clear();  // no memory for the message: the result still says what happened
+  }
   if (info.message_callback) info.message_callback(TVK_MESSAGE_ERROR, last_error.c_str(), info.message_user_data);
+  return result;
+}
+
+TvkResult fail_without_context(TvkResult result, const char* format, ...) {
+  try {
+    va_list args;
+    va_start(args, format);
+    g_error_without_context = vformat(format, args);
+    va_end(args);
+  } catch (const std::bad_alloc&) {
+    g_error_without_context.clear();
+  }
   return result;
 }
 
@@ -38,7 +60,7 @@ void Context::message(TvkMessageSeverity severity, const char* format, ...) {
 
 TvkResult Context::check(VkResult vr, const char* what) {
   if (vr == VK_SUCCESS) return TVK_SUCCESS;
-  if (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+  if (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY || vr == VK_ERROR_OUT_OF_POOL_MEMORY)
     return fail(TVK_ERROR_OUT_OF_MEMORY, "%s failed: %s", what, vk_result_name(vr));
   return fail(TVK_ERROR_VULKAN, "%s failed: %s", what, vk_result_name(vr));
 }
@@ -61,9 +83,101 @@ const char* vk_result_name(VkResult result) {
     TVK_CASE(VK_ERROR_INCOMPATIBLE_DRIVER);
     TVK_CASE(VK_ERROR_TOO_MANY_OBJECTS);
     TVK_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED);
+    TVK_CASE(VK_ERROR_FRAGMENTED_POOL);
+    TVK_CASE(VK_ERROR_UNKNOWN);
+    TVK_CASE(VK_ERROR_OUT_OF_POOL_MEMORY);
+    TVK_CASE(VK_ERROR_INVALID_EXTERNAL_HANDLE);
+    TVK_CASE(VK_ERROR_FRAGMENTATION);
+    TVK_CASE(VK_ERROR_INVALID_OPAQUE_CAPTURE_ADDRESS);
+    TVK_CASE(VK_PIPELINE_COMPILE_REQUIRED);
 #undef TVK_CASE
     default: return "VkResult error";
   }
+}
+
+
+// Everything tressvk_create_context does once the arguments are checked; on failure the caller destroys the
+// half-made context (tressvk_destroy_context copes with any prefix of this).
+TvkResult init_context(Context& ctx) {
+  const TvkContextCreateInfo& info = ctx.info;
+  // Our own copy of volk lives inside this shared library (hidden visibility), so these calls fill TressVK's
+  // private globals and table, never the host's.
+  volkInitializeCustom(info.get_instance_proc_addr);
+  volkLoadInstanceOnly(info.instance);
+  volkLoadDeviceTable(&ctx.vk, info.device);
+  fault::install(info.next, ctx.vk);
+  ctx.get_physical_device_properties = vkGetPhysicalDeviceProperties;
+  ctx.get_physical_device_properties(info.physical_device, &ctx.device_properties);
+  if (ctx.device_properties.apiVersion < VK_API_VERSION_1_3)
+    return ctx.fail(TVK_ERROR_MISSING_FEATURE, "tressvk_create_context: device '%s' supports Vulkan %u.%u; TressVK needs 1.3",
+                    ctx.device_properties.deviceName, VK_API_VERSION_MAJOR(ctx.device_properties.apiVersion),
+                    VK_API_VERSION_MINOR(ctx.device_properties.apiVersion));
+
+  // VMA calls Vulkan through this context's table (so fault-injection builds see its calls too).
+  VmaVulkanFunctions functions{};
+  functions.vkGetInstanceProcAddr = info.get_instance_proc_addr;
+  functions.vkGetDeviceProcAddr = vkGetDeviceProcAddr;
+  functions.vkAllocateMemory = ctx.vk.vkAllocateMemory;
+  functions.vkFreeMemory = ctx.vk.vkFreeMemory;
+  functions.vkMapMemory = ctx.vk.vkMapMemory;
+  functions.vkUnmapMemory = ctx.vk.vkUnmapMemory;
+  functions.vkFlushMappedMemoryRanges = ctx.vk.vkFlushMappedMemoryRanges;
+  functions.vkInvalidateMappedMemoryRanges = ctx.vk.vkInvalidateMappedMemoryRanges;
+  functions.vkBindBufferMemory = ctx.vk.vkBindBufferMemory;
+  functions.vkBindImageMemory = ctx.vk.vkBindImageMemory;
+  functions.vkGetBufferMemoryRequirements = ctx.vk.vkGetBufferMemoryRequirements;
+  functions.vkGetImageMemoryRequirements = ctx.vk.vkGetImageMemoryRequirements;
+  functions.vkCreateBuffer = ctx.vk.vkCreateBuffer;
+  functions.vkDestroyBuffer = ctx.vk.vkDestroyBuffer;
+  functions.vkCreateImage = ctx.vk.vkCreateImage;
+  functions.vkDestroyImage = ctx.vk.vkDestroyImage;
+  functions.vkCmdCopyBuffer = ctx.vk.vkCmdCopyBuffer;
+  functions.vkGetBufferMemoryRequirements2KHR = ctx.vk.vkGetBufferMemoryRequirements2;
+  functions.vkGetImageMemoryRequirements2KHR = ctx.vk.vkGetImageMemoryRequirements2;
+  functions.vkBindBufferMemory2KHR = ctx.vk.vkBindBufferMemory2;
+  functions.vkBindImageMemory2KHR = ctx.vk.vkBindImageMemory2;
+  functions.vkGetDeviceBufferMemoryRequirements = ctx.vk.vkGetDeviceBufferMemoryRequirements;
+  functions.vkGetDeviceImageMemoryRequirements = ctx.vk.vkGetDeviceImageMemoryRequirements;
+  VmaAllocatorCreateInfo aci{};
+  aci.physicalDevice = info.physical_device;
+  aci.device = info.device;
+  aci.instance = info.instance;
+  aci.vulkanApiVersion = VK_API_VERSION_1_3;
+  aci.pAllocationCallbacks = info.allocator;
+  aci.pVulkanFunctions = &functions;
+  if (const TvkResult r = ctx.check(vmaCreateAllocator(&aci, &ctx.allocator), "vmaCreateAllocator"); r != TVK_SUCCESS) {
+    ctx.allocator = VK_NULL_HANDLE;
+    return r;
+  }
+  if (info.enable_timestamps) {
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(info.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(info.physical_device, &family_count, families.data());
+    if (info.queue_family_index < family_count && families[info.queue_family_index].timestampValidBits > 0 &&
+        ctx.device_properties.limits.timestampPeriod > 0.0f) {
+      // Two queries per pass slot: up to 4 passes per substep plus the follow pass.
+      ctx.queries_per_frame = 2 * (4 * TVK_MAX_STEPS_PER_FRAME + 1);
+      VkQueryPoolCreateInfo qci{};
+      qci.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+      qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      qci.queryCount = ctx.queries_per_frame * ctx.frames_in_flight;
+      VkQueryPool pool = VK_NULL_HANDLE;
+      if (const TvkResult r =
+              ctx.check(ctx.vk.vkCreateQueryPool(info.device, &qci, info.allocator, &pool), "vkCreateQueryPool");
+          r != TVK_SUCCESS)
+        return r;
+      ctx.timestamp_pool = pool;
+      ctx.timestamp_period_ns = ctx.device_properties.limits.timestampPeriod;
+      ctx.timed_slices.resize(ctx.frames_in_flight);
+    } else {
+      ctx.message(TVK_MESSAGE_WARNING, "timestamps requested but queue family %u does not support them",
+                  info.queue_family_index);
+    }
+  }
+  ctx.message(TVK_MESSAGE_INFO, "TressVK %d.%d.%d context on '%s'", TVK_VERSION_MAJOR, TVK_VERSION_MINOR,
+              TVK_VERSION_PATCH, ctx.device_properties.deviceName);
+  return TVK_SUCCESS;
 }
 
 }  // namespace tressvk
@@ -105,83 +219,45 @@ void tressvk_get_device_requirements(TvkDeviceRequirements* out) {
 }
 
 TvkResult tressvk_create_context(const TvkContextCreateInfo* info, TvkContext* out_context) {
-  if (!out_context) return TVK_ERROR_INVALID_ARGUMENT;
+  using tressvk::fail_without_context;
+  constexpr const char* kCall = "tressvk_create_context";
+  if (!out_context) return fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "%s: out_context is NULL", kCall);
   *out_context = nullptr;
-  if (!info || info->struct_size != sizeof(TvkContextCreateInfo) || !info->instance || !info->physical_device ||
-      !info->device || !info->get_instance_proc_addr)
-    return TVK_ERROR_INVALID_ARGUMENT;
-  if (info->api_version < VK_API_VERSION_1_3) {
-    if (info->message_callback)
-      info->message_callback(TVK_MESSAGE_ERROR, "TressVK needs a Vulkan 1.3 instance and device (api_version)",
-                             info->message_user_data);
-    return TVK_ERROR_MISSING_FEATURE;
-  }
+  if (!info) return fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "%s: info is NULL", kCall);
+  // The message callback is usable from here on, so failures reach the host's log too.
+  const auto refuse = [info](TvkResult r, const std::string& what) {
+    fail_without_context(r, "%s: %s", kCall, what.c_str());
+    if (info->message_callback) info->message_callback(TVK_MESSAGE_ERROR, tressvk_last_error(nullptr), info->message_user_data);
+    return r;
+  };
+  if (info->struct_size != sizeof(TvkContextCreateInfo))
+    return refuse(TVK_ERROR_INVALID_ARGUMENT, "struct_size is " + std::to_string(info->struct_size) + ", expected " +
+                                                  std::to_string(sizeof(TvkContextCreateInfo)) +
+                                                  " (sizeof(TvkContextCreateInfo) of this version)");
+  if (!info->instance) return refuse(TVK_ERROR_INVALID_ARGUMENT, "instance is VK_NULL_HANDLE");
+  if (!info->physical_device) return refuse(TVK_ERROR_INVALID_ARGUMENT, "physical_device is VK_NULL_HANDLE");
+  if (!info->device) return refuse(TVK_ERROR_INVALID_ARGUMENT, "device is VK_NULL_HANDLE");
+  if (!info->get_instance_proc_addr) return refuse(TVK_ERROR_INVALID_ARGUMENT, "get_instance_proc_addr is NULL");
+  if (info->frames_in_flight > tressvk::kMaxFramesInFlight)
+    return refuse(TVK_ERROR_INVALID_ARGUMENT, "frames_in_flight " + std::to_string(info->frames_in_flight) +
+                                                  " exceeds " + std::to_string(tressvk::kMaxFramesInFlight));
+  if (info->api_version < VK_API_VERSION_1_3)
+    return refuse(TVK_ERROR_MISSING_FEATURE, "api_version: TressVK needs a Vulkan 1.3 instance and device");
 
-  TvkContext_T* ctx = new (std::nothrow) TvkContext_T();
-  if (!ctx) return TVK_ERROR_OUT_OF_MEMORY;
+  // Owned until handed to the host: every early return below destroys what was made so far.
+  std::unique_ptr<TvkContext_T, void (*)(TvkContext_T*)> ctx(new (std::nothrow) TvkContext_T(),
+                                                             [](TvkContext_T* c) { tressvk_destroy_context(c); });
+  if (!ctx) return refuse(TVK_ERROR_OUT_OF_MEMORY, "out of host memory");
   ctx->info = *info;
   ctx->frames_in_flight = info->frames_in_flight ? info->frames_in_flight : 2;
-
-  // Our own copy of volk lives inside this shared library (hidden visibility), so these calls fill TressVK's
-  // private globals and table, never the host's.
-  volkInitializeCustom(info->get_instance_proc_addr);
-  volkLoadInstanceOnly(info->instance);
-  volkLoadDeviceTable(&ctx->vk, info->device);
-  ctx->get_physical_device_properties = vkGetPhysicalDeviceProperties;
-  ctx->get_physical_device_properties(info->physical_device, &ctx->device_properties);
-  if (ctx->device_properties.apiVersion < VK_API_VERSION_1_3) {
-    const TvkResult r = ctx->fail(TVK_ERROR_MISSING_FEATURE, "device '%s' supports Vulkan %u.%u; TressVK needs 1.3",
-                                  ctx->device_properties.deviceName, VK_API_VERSION_MAJOR(ctx->device_properties.apiVersion),
-                                  VK_API_VERSION_MINOR(ctx->device_properties.apiVersion));
-    delete ctx;
+  const TvkResult r = tressvk::guarded(*ctx, kCall, [&]() -> TvkResult {
+    return tressvk::init_context(*ctx);
+  });
+  if (r != TVK_SUCCESS) {
+    fail_without_context(r, "%s", ctx->last_error.c_str());
     return r;
   }
-
-  VmaVulkanFunctions functions{};
-  functions.vkGetInstanceProcAddr = info->get_instance_proc_addr;
-  functions.vkGetDeviceProcAddr = vkGetDeviceProcAddr;
-  VmaAllocatorCreateInfo aci{};
-  aci.physicalDevice = info->physical_device;
-  aci.device = info->device;
-  aci.instance = info->instance;
-  aci.vulkanApiVersion = VK_API_VERSION_1_3;
-  aci.pAllocationCallbacks = info->allocator;
-  aci.pVulkanFunctions = &functions;
-  if (const TvkResult r = ctx->check(vmaCreateAllocator(&aci, &ctx->allocator), "vmaCreateAllocator");
-      r != TVK_SUCCESS) {
-    delete ctx;
-    return r;
-  }
-  if (info->enable_timestamps) {
-    uint32_t family_count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(info->physical_device, &family_count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(family_count);
-    vkGetPhysicalDeviceQueueFamilyProperties(info->physical_device, &family_count, families.data());
-    if (info->queue_family_index < family_count && families[info->queue_family_index].timestampValidBits > 0 &&
-        ctx->device_properties.limits.timestampPeriod > 0.0f) {
-      // Two queries per pass slot: up to 4 passes per substep plus the follow pass.
-      ctx->queries_per_frame = 2 * (4 * TVK_MAX_STEPS_PER_FRAME + 1);
-      VkQueryPoolCreateInfo qci{};
-      qci.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-      qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      qci.queryCount = ctx->queries_per_frame * ctx->frames_in_flight;
-      if (const TvkResult r = ctx->check(
-              ctx->vk.vkCreateQueryPool(info->device, &qci, info->allocator, &ctx->timestamp_pool), "vkCreateQueryPool");
-          r != TVK_SUCCESS) {
-        vmaDestroyAllocator(ctx->allocator);
-        delete ctx;
-        return r;
-      }
-      ctx->timestamp_period_ns = ctx->device_properties.limits.timestampPeriod;
-      ctx->timed_slices.resize(ctx->frames_in_flight);
-    } else {
-      ctx->message(TVK_MESSAGE_WARNING, "timestamps requested but queue family %u does not support them",
-                   info->queue_family_index);
-    }
-  }
-  ctx->message(TVK_MESSAGE_INFO, "TressVK %d.%d.%d context on '%s'", TVK_VERSION_MAJOR, TVK_VERSION_MINOR,
-               TVK_VERSION_PATCH, ctx->device_properties.deviceName);
-  *out_context = ctx;
+  *out_context = ctx.release();
   return TVK_SUCCESS;
 }
 
@@ -190,13 +266,25 @@ void tressvk_destroy_context(TvkContext context) {
   if (!ctx) return;
   tressvk::destroy_sim_objects(*ctx);
   ctx->collect_garbage(true);
-  if (ctx->allocator) vmaDestroyAllocator(ctx->allocator);
+  if (ctx->allocator) {
+    // Assets or instances the host did not destroy still hold VMA allocations, and VMA asserts on them; report
+    // them instead (their handles become invalid with the context).
+    VmaTotalStatistics stats{};
+    vmaCalculateStatistics(ctx->allocator, &stats);
+    if (stats.total.statistics.allocationCount != 0)
+      ctx->message(TVK_MESSAGE_ERROR,
+                   "tressvk_destroy_context: %u GPU allocation(s) of assets or instances not destroyed first (leaked)",
+                   stats.total.statistics.allocationCount);
+    else
+      vmaDestroyAllocator(ctx->allocator);
+  }
   delete ctx;
 }
 
 TvkResult tressvk_get_memory_usage(TvkContext context, TvkMemoryUsage* out_usage) {
   TvkContext_T* ctx = context;
-  if (!ctx || !out_usage) return TVK_ERROR_INVALID_ARGUMENT;
+  if (!ctx) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_memory_usage: context is NULL");
+  if (!out_usage) return ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_memory_usage: out_usage is NULL");
   VmaTotalStatistics stats{};
   vmaCalculateStatistics(ctx->allocator, &stats);
   out_usage->device_bytes = stats.total.statistics.allocationBytes;
@@ -206,7 +294,7 @@ TvkResult tressvk_get_memory_usage(TvkContext context, TvkMemoryUsage* out_usage
 
 const char* tressvk_last_error(TvkContext context) {
   TvkContext_T* ctx = context;
-  return ctx ? ctx->last_error.c_str() : "";
+  return ctx ? ctx->last_error.c_str() : tressvk::g_error_without_context.c_str();
 }
 
 }  // extern "C"

@@ -7,6 +7,8 @@
 #include <vk_mem_alloc.h>
 
 #include <cstdarg>
+#include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,7 @@ struct Context {
   VmaAllocator allocator = VK_NULL_HANDLE;    // private to TressVK, on the host's device
   uint32_t frames_in_flight = 2;
   std::string last_error;
+  uint64_t error_serial = 0;                  // counts fail() calls: guarded() sees whether a failure has a message
 
   // Frame pacing: tressvk_new_frame() advances `frame`; the host promises that the GPU has finished the frame
   // recorded `frames_in_flight` frames earlier, so resources released then can be destroyed now.
@@ -70,6 +73,34 @@ struct Context {
 };
 
 const char* vk_result_name(VkResult result);
+
+// The most frames in flight a context accepts (the per-frame rings are sized by it).
+inline constexpr uint32_t kMaxFramesInFlight = 16;
+
+// Records the error of a call that has no valid context (tressvk_last_error(NULL) on this thread) and returns
+// `result`.
+TvkResult fail_without_context(TvkResult result, const char* format, ...) __attribute__((format(printf, 2, 3)));
+
+// The one status path of the C interface: runs an entry point's body, turns any C++ exception into a TvkResult
+// with a message, and gives every failure that recorded no message of its own one naming the call. Bodies hold
+// what they create in owners (unique_ptr, guards) until they hand it to the host, so an early return or an
+// exception leaves nothing behind.
+template <class Body>
+TvkResult guarded(Context& ctx, const char* call, Body&& body) noexcept {
+  const uint64_t serial = ctx.error_serial;
+  TvkResult r = TVK_SUCCESS;
+  try {
+    r = body();
+  } catch (const std::bad_alloc&) {
+    r = ctx.fail(TVK_ERROR_OUT_OF_MEMORY, "%s: out of host memory", call);
+  } catch (const std::exception& e) {
+    r = ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: %s", call, e.what());
+  } catch (...) {
+    r = ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: unexpected exception", call);
+  }
+  if (r != TVK_SUCCESS && ctx.error_serial == serial) ctx.fail(r, "%s failed (%d)", call, static_cast<int>(r));
+  return r;
+}
 
 }  // namespace tressvk
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <memory>
 #include <new>
 
 using tressvk::Context;
@@ -28,9 +29,14 @@ void destroy_instance_now(TvkInstance_T* inst, bool deferred) {
     else
       ctx.vk.vkDestroyDescriptorPool(ctx.info.device, inst->pool, ctx.info.allocator);
   }
-  if (inst->asset) inst->asset->release();
+  if (inst->asset && inst->holds_asset) inst->asset->release();
   delete inst;
 }
+
+// Owns an instance under construction: a failure anywhere frees what was made, at once (nothing was recorded).
+struct DestroyNow {
+  void operator()(TvkInstance_T* inst) const { destroy_instance_now(inst, false); }
+};
 
 TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
   const auto& rest = inst.asset->rest;
@@ -126,38 +132,39 @@ TvkResult check_params(Context& ctx, const TvkSimParams& p, const char* what) {
 extern "C" {
 
 TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInfo* info, TvkInstance* out) {
-  if (!out) return TVK_ERROR_INVALID_ARGUMENT;
-  *out = nullptr;
-  if (!context) return TVK_ERROR_INVALID_ARGUMENT;
+  constexpr const char* kCall = "tressvk_create_instance";
+  if (out) *out = nullptr;
+  if (!context) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "%s: context is NULL", kCall);
   Context& ctx = *context;
-  if (!info || info->struct_size != sizeof(TvkInstanceCreateInfo) || !info->asset)
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_create_instance: info, struct_size or asset is wrong");
-  if (TvkResult r = tressvk::ensure_sim_layouts(ctx); r != TVK_SUCCESS) return r;
-  try {
-    auto* inst = new TvkInstance_T();
+  return tressvk::guarded(ctx, kCall, [&]() -> TvkResult {
+    if (!out) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: out_instance is NULL", kCall);
+    if (!info) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: info is NULL", kCall);
+    if (info->struct_size != sizeof(TvkInstanceCreateInfo))
+      return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: struct_size is %zu, expected %zu", kCall, info->struct_size,
+                      sizeof(TvkInstanceCreateInfo));
+    if (!info->asset) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: asset is NULL", kCall);
+    if (info->asset->ctx != &ctx)
+      return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: the asset belongs to another context", kCall);
+    const TvkSimSettings settings = info->settings ? *info->settings : TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT;
+    const TvkSimParams params = info->params ? *info->params : TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT;
+    if (TvkResult r = check_params(ctx, params, "tressvk_create_instance: params"); r != TVK_SUCCESS) return r;
+    if (TvkResult r = tressvk::ensure_sim_layouts(ctx); r != TVK_SUCCESS) return r;
+
+    std::unique_ptr<TvkInstance_T, DestroyNow> inst(new TvkInstance_T());
     inst->ctx = &ctx;
     inst->asset = info->asset;
-    ++info->asset->users;
-    inst->settings = info->settings ? *info->settings : TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT;
-    const TvkSimParams params = info->params ? *info->params : TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT;
-    if (TvkResult r = check_params(ctx, params, "tressvk_create_instance: params"); r != TVK_SUCCESS) {
-      destroy_instance_now(inst, false);
-      return r;
-    }
+    inst->settings = settings;
     inst->params.assign(std::max<size_t>(1, info->asset->cpu.groups.size()), params);
-    inst->planner = std::make_unique<tressvk::reference::FramePlanner>(inst->settings, info->asset->cpu.origin,
+    // The planner checks the settings and names the field at fault (e.g. time.step_rate); it throws.
+    inst->planner = std::make_unique<tressvk::reference::FramePlanner>(settings, info->asset->cpu.origin,
                                                                         info->asset->rest.bone_count);
-    if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) {
-      destroy_instance_now(inst, false);
-      return r;
-    }
-    *out = inst;
+    if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) return r;
+    // Handed to the host: only now does the instance count as a user of the asset.
+    ++info->asset->users;
+    inst->holds_asset = true;
+    *out = inst.release();
     return TVK_SUCCESS;
-  } catch (const std::bad_alloc&) {
-    return ctx.fail(TVK_ERROR_OUT_OF_MEMORY, "tressvk_create_instance: out of host memory");
-  } catch (const std::exception& e) {
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_create_instance: %s", e.what());
-  }
+  });
 }
 
 void tressvk_destroy_instance(TvkInstance instance) {
@@ -165,8 +172,10 @@ void tressvk_destroy_instance(TvkInstance instance) {
 }
 
 TvkResult tressvk_set_sim_params(TvkInstance instance, uint32_t group, const TvkSimParams* params) {
-  if (!instance || !params) return TVK_ERROR_INVALID_ARGUMENT;
+  if (!instance)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_params: instance is NULL");
   Context& ctx = *instance->ctx;
+  if (!params) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_params: params is NULL");
   if (group != TVK_ALL_GROUPS && group >= instance->params.size())
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_params: group %u out of range (asset has %zu)",
                     group, instance->params.size());
@@ -179,14 +188,15 @@ TvkResult tressvk_set_sim_params(TvkInstance instance, uint32_t group, const Tvk
 }
 
 TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* settings) {
-  if (!instance || !settings) return TVK_ERROR_INVALID_ARGUMENT;
-  try {
-    instance->planner->set_settings(*settings);
+  if (!instance)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_settings: instance is NULL");
+  Context& ctx = *instance->ctx;
+  return tressvk::guarded(ctx, "tressvk_set_sim_settings", [&]() -> TvkResult {
+    if (!settings) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_settings: settings is NULL");
+    instance->planner->set_settings(*settings);  // throws naming the field; the settings stay as they were
     instance->settings = *settings;
-  } catch (const std::exception& e) {
-    return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_settings: %s", e.what());
-  }
-  return TVK_SUCCESS;
+    return TVK_SUCCESS;
+  });
 }
 
 TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
@@ -211,7 +221,9 @@ TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
 }
 
 TvkResult tressvk_get_instance_buffers(TvkInstance instance, TvkInstanceBuffers* out) {
-  if (!instance || !out) return TVK_ERROR_INVALID_ARGUMENT;
+  if (!instance)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_instance_buffers: instance is NULL");
+  if (!out) return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_instance_buffers: out_buffers is NULL");
   *out = TvkInstanceBuffers{};
   out->positions = instance->positions.buffer;
   out->tangents = instance->tangents.buffer;
@@ -230,7 +242,9 @@ TvkResult tressvk_get_instance_buffers(TvkInstance instance, TvkInstanceBuffers*
 }
 
 TvkResult tressvk_get_instance_stats(TvkInstance instance, TvkInstanceStats* out) {
-  if (!instance || !out) return TVK_ERROR_INVALID_ARGUMENT;
+  if (!instance)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_instance_stats: instance is NULL");
+  if (!out) return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_instance_stats: out_stats is NULL");
   *out = TvkInstanceStats{};
   out->steps = instance->steps;
   out->frames = instance->frames;

@@ -32,6 +32,7 @@ struct TvkAsset_T {
 struct TvkInstance_T {
   tressvk::Context* ctx = nullptr;
   TvkAsset_T* asset = nullptr;
+  bool holds_asset = false;             // counted in asset->users (only once handed to the host)
   TvkSimSettings settings{};
   std::vector<TvkSimParams> params;     // one per strand group
   TvkSimFrame frame{};                  // this frame's input (tressvk_set_frame)

@@ -14,6 +14,8 @@ namespace tressvk {
 
 TvkResult ensure_sim_layouts(Context& ctx) {
   if (ctx.sim_pipeline_layout) return TVK_SUCCESS;
+  // A set layout left by an earlier attempt whose pipeline layout failed is reused, not made (and leaked) again.
+  if (!ctx.sim_set_layout) {
   std::array<VkDescriptorSetLayoutBinding, sim::kBindingCount> bindings{};
   for (uint32_t b = 0; b < sim::kBindingCount; ++b) {
     bindings[b].binding = b;
@@ -29,8 +31,11 @@ TvkResult ensure_sim_layouts(Context& ctx) {
   if (TvkResult r = ctx.check(
           ctx.vk.vkCreateDescriptorSetLayout(ctx.info.device, &sci, ctx.info.allocator, &ctx.sim_set_layout),
           "vkCreateDescriptorSetLayout");
-      r != TVK_SUCCESS)
+      r != TVK_SUCCESS) {
+    ctx.sim_set_layout = VK_NULL_HANDLE;
     return r;
+  }
+  }
   const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(sim::PushConstants)};
   VkPipelineLayoutCreateInfo pci{};
   pci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
@@ -38,9 +43,11 @@ TvkResult ensure_sim_layouts(Context& ctx) {
   pci.pSetLayouts = &ctx.sim_set_layout;
   pci.pushConstantRangeCount = 1;
   pci.pPushConstantRanges = &range;
-  return ctx.check(
-      ctx.vk.vkCreatePipelineLayout(ctx.info.device, &pci, ctx.info.allocator, &ctx.sim_pipeline_layout),
-      "vkCreatePipelineLayout");
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  const TvkResult r =
+      ctx.check(ctx.vk.vkCreatePipelineLayout(ctx.info.device, &pci, ctx.info.allocator, &layout), "vkCreatePipelineLayout");
+  if (r == TVK_SUCCESS) ctx.sim_pipeline_layout = layout;
+  return r;
 }
 
 void destroy_sim_objects(Context& ctx) {
@@ -184,18 +191,23 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
 extern "C" {
 
 TvkResult tressvk_new_frame(TvkContext context) {
-  if (!context) return TVK_ERROR_INVALID_ARGUMENT;
+  if (!context) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_new_frame: context is NULL");
   ++context->frame;
   context->collect_garbage(false);
   return TVK_SUCCESS;
 }
 
-TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer cmd, const TvkSimulateInfo* info) {
+// The body of tressvk_cmd_simulate (run through tressvk::guarded: exceptions and unnamed failures get messages).
+static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, const TvkSimulateInfo* info) {
   using namespace tressvk;
-  if (!context) return TVK_ERROR_INVALID_ARGUMENT;
-  Context& ctx = *context;
-  if (!cmd || !info || info->struct_size != sizeof(TvkSimulateInfo) || (info->instance_count && !info->instances))
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: command buffer, info or instances missing");
+  if (!cmd) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: command_buffer is VK_NULL_HANDLE");
+  if (!info) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: info is NULL");
+  if (info->struct_size != sizeof(TvkSimulateInfo))
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: struct_size is %zu, expected %zu",
+                    info->struct_size, sizeof(TvkSimulateInfo));
+  if (info->instance_count && !info->instances)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: instances is NULL with instance_count %u",
+                    info->instance_count);
 
   std::vector<InstanceWork> work(info->instance_count);
   try {
@@ -342,6 +354,12 @@ TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer cmd, const Tv
   }
   record_barriers(ctx, cmd, barriers);
   return TVK_SUCCESS;
+}
+
+TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer cmd, const TvkSimulateInfo* info) {
+  if (!context)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: context is NULL");
+  return tressvk::guarded(*context, "tressvk_cmd_simulate", [&] { return record_simulation(*context, cmd, info); });
 }
 
 uint32_t tressvk_get_recorded_passes(TvkContext context, const char** names, uint32_t capacity) {

@@ -6,6 +6,7 @@
 #include "bench.hpp"
 #include "render_bench.hpp"
 #include "run_bench.hpp"
+#include "soak_bench.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
@@ -126,9 +127,18 @@ int main(int argc, char** argv) {
   CLI::App* render = bench::add_render_subcommand(app, render_options);
   bench::RunCommand run_command;
   bench::add_run_command(app, run_command);
+  CLI::App* soak = bench::add_soak_subcommand(app);
   CLI11_PARSE(app, argc, argv);
   if (render->parsed()) return bench::run_render_bench(render_options);
   if (run_command.app->parsed()) return bench::execute_run_command(run_command);
+  if (soak->parsed()) {
+    try {
+      return bench::run_soak();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "tressvk-bench soak: %s\n", e.what());
+      return 2;
+    }
+  }
 
   o.trajectory = !no_trajectory;
   try {

@@ -52,6 +52,16 @@ std::vector<std::string> validate(const HairAsset& a) {
   }
   const size_t g = a.rest_positions.size() / n;
   const size_t vc = a.rest_positions.size();
+  if (a.follow_per_guide > kMaxFollowPerGuide) {
+    issue("follow_per_guide " + std::to_string(a.follow_per_guide) + " exceeds " + std::to_string(kMaxFollowPerGuide));
+    return issues;
+  }
+  if (uint64_t{g} * (1 + a.follow_per_guide) * n > kMaxRenderedVertices) {
+    issue("guides x (1 + follow_per_guide) x vertices_per_strand = " +
+          std::to_string(uint64_t{g} * (1 + a.follow_per_guide) * n) + " rendered vertices exceeds the limit of " +
+          std::to_string(kMaxRenderedVertices));
+    return issues;
+  }
   if (a.rest_lengths.size() != vc) issue("rest_lengths: size differs from rest_positions");
   if (a.rest_frames.size() != vc) issue("rest_frames: size differs from rest_positions");
   if (a.rest_edge_local.size() != vc) issue("rest_edge_local: size differs from rest_positions");

@@ -8,8 +8,12 @@
  * Conventions
  * - Every create-info struct starts with `struct_size` (set it to sizeof the struct) and `next` (NULL or an
  *   extension chain). Zero-initialise structs before filling them: zero means "default" for every field.
- * - Functions return TvkResult; no C++ exception ever crosses this interface. Messages go to the host's
- *   message callback, and the last error of a context is available from tressvk_last_error().
+ * - Functions return TvkResult; no C++ exception ever crosses this interface. Every failure records a message
+ *   that names the function and the field or Vulkan call at fault: it goes to the host's message callback and is
+ *   available from tressvk_last_error() (of the context, or of the calling thread for calls that have no valid
+ *   context, e.g. a failed tressvk_create_context).
+ * - A failed create or load call leaves nothing behind: no object, no GPU memory, no change to the objects it was
+ *   given (an asset's instance count included), so the host may fix the input and call again.
  * - Units are metres, seconds and radians.
  * - Thread safety: a context and the objects made from it may be used from one thread at a time.
  *
@@ -21,9 +25,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#ifndef VK_NO_PROTOTYPES
-#define VK_NO_PROTOTYPES
-#endif
+/* Only types are used here: this header neither defines VK_NO_PROTOTYPES nor needs it, so a host that includes
+ * it before <vulkan/vulkan.h> keeps its vk* prototypes (and a volk host defines VK_NO_PROTOTYPES itself). */
 #include <vulkan/vulkan.h>
 
 #include "tressvk/sim_types.h"
@@ -115,7 +118,9 @@ TVK_API TvkResult tressvk_create_context(const TvkContextCreateInfo* info, TvkCo
 TVK_API void tressvk_destroy_context(TvkContext context);
 
 TVK_API TvkResult tressvk_get_memory_usage(TvkContext context, TvkMemoryUsage* out_usage);
-/* The message of the last failed call on this context ("" when none). Valid until the next call. */
+/* The message of the last failed call on this context ("" when none). With context NULL: the message of the last
+ * call on this thread that failed without a valid context (tressvk_create_context, or any call given a NULL
+ * handle). Valid until the next call. */
 TVK_API const char* tressvk_last_error(TvkContext context);
 
 

@@ -35,6 +35,10 @@ namespace tressvk::asset {
 inline constexpr uint32_t kMinVerticesPerStrand = 4;
 inline constexpr uint32_t kMaxVerticesPerStrand = 128;
 inline constexpr uint32_t kMaxBoneInfluences = 4;
+// Resource limits every reader enforces (docs/asset-format.md, "Limits"): follow hairs per guide, and vertices
+// rendered (guides x (1 + follows) x N), which bounds the GPU memory and the 32-bit indices of the runtime.
+inline constexpr uint32_t kMaxFollowPerGuide = 64;
+inline constexpr uint64_t kMaxRenderedVertices = uint64_t{1} << 31;
 
 struct BoneInfluences {
   std::array<uint32_t, kMaxBoneInfluences> bone{};  // indices into HairAsset::bone_names

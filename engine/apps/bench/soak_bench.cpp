@@ -1,0 +1,333 @@
+// tressvk-bench soak: a groom driven through every reference scene with random host behaviour on top --
+// teleports, hitches (long frames), pauses (dt 0), parameter and settings changes, wind gusts, instances created
+// and destroyed every few frames -- for a given wall-clock time. Every `--check-every` frames each live instance is
+// read back: it must have 0 NaN strands and 0 non-finite resets, and a bounded stretch; GPU memory (per live
+// instance count) and the process's resident memory must stay flat. Exit 0 when all held, 1 otherwise.
+//
+//   tressvk-bench soak --builtin curly --seconds 3600 --json soak.json
+//   tressvk-bench soak --asset Ratboy_mohawk.tvkhair --seconds 3600 --instances 4
+#include "soak_bench.hpp"
+
+#include <tressvk/asset_io.hpp>
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/engine/device.hpp>
+#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/model.hpp>
+#include <tressvk/reference/scenes.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tressvk::bench {
+namespace {
+
+struct SoakOptions {
+  std::string asset_path, builtin = "curly", device, json_path;
+  baker::BuiltinGroomOptions groom;
+  double seconds = 60;
+  uint64_t max_frames = 0;      // 0 = until the time is up
+  uint32_t max_instances = 3;
+  uint32_t check_every = 30;
+  uint64_t seed = 1;
+  double max_stretch = 0.5;     // relative, over guide segments
+  double rss_slack_mb = 32;     // allowed resident-memory growth after the warm-up
+  bool validation = false;
+};
+
+SoakOptions g_options;
+
+struct SoakInstance {
+  TvkInstance handle = nullptr;
+  uint32_t frame = 0;           // frames since creation
+  std::string scene;
+  uint32_t scene_frame = 0;
+  double offset[3] = {0, 0, 0};  // added to the scene's translation (teleports move it)
+  uint32_t paused = 0;          // frames of dt 0 left
+};
+
+struct Totals {
+  uint64_t frames = 0, instance_frames = 0, created = 0, destroyed = 0, teleports = 0, hitches = 0, pauses = 0,
+           param_changes = 0, settings_changes = 0, checks = 0, nan_strands = 0, exploded = 0, resets = 0;
+  double stretch_max = 0;
+  double rss_start_mb = 0, rss_end_mb = 0, rss_max_mb = 0;
+  std::map<uint32_t, std::pair<uint64_t, uint64_t>> gpu_bytes_by_instances;  // first and last seen
+  bool gpu_flat = true;
+};
+
+double rss_mb() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  long pages = 0, resident = 0;
+  const int n = std::fscanf(f, "%ld %ld", &pages, &resident);
+  std::fclose(f);
+  return n == 2 ? double(resident) * 4096.0 / (1024.0 * 1024.0) : 0;
+}
+
+void check(TvkResult r, TvkContext ctx, const char* what) {
+  if (r != TVK_SUCCESS)
+    throw std::runtime_error(std::string(what) + ": " + tressvk_result_string(r) + ": " + tressvk_last_error(ctx));
+}
+
+}  // namespace
+
+CLI::App* add_soak_subcommand(CLI::App& app) {
+  SoakOptions& o = g_options;
+  CLI::App* soak = app.add_subcommand("soak", "random host motion, events and instance churn for a given time");
+  soak->add_option("--asset", o.asset_path, "a baked .tvkhair file (default: a built-in groom)");
+  soak->add_option("--builtin", o.builtin, "a procedural groom: straight, curly or long128")->capture_default_str();
+  soak->add_option("--guides", o.groom.guide_count, "guides of a built-in groom")->capture_default_str();
+  soak->add_option("--follows", o.groom.follow_per_guide, "follow hairs per guide of a built-in groom")->capture_default_str();
+  soak->add_option("--seconds", o.seconds, "wall-clock duration")->capture_default_str();
+  soak->add_option("--frames", o.max_frames, "stop after this many frames (0: only the time limit)");
+  soak->add_option("--instances", o.max_instances, "most instances alive at once")->capture_default_str();
+  soak->add_option("--check-every", o.check_every, "read the state back every N frames")->capture_default_str();
+  soak->add_option("--seed", o.seed)->capture_default_str();
+  soak->add_option("--max-stretch", o.max_stretch, "largest relative segment stretch allowed")->capture_default_str();
+  soak->add_option("--rss-slack-mb", o.rss_slack_mb, "resident memory growth allowed after the first 10 %")->capture_default_str();
+  soak->add_option("--device", o.device, "device index or name substring");
+  soak->add_option("--json", o.json_path, "write the figures as JSON");
+  soak->add_flag("--validation", o.validation, "enable the Vulkan validation layer (any message fails the run)");
+  return soak;
+}
+
+int run_soak() {
+  const SoakOptions& o = g_options;
+  engine::DeviceOptions dopt;
+  dopt.app_name = "tressvk-bench-soak";
+  dopt.device = o.device;
+  dopt.validation = o.validation;
+  dopt.sync_validation = o.validation;
+  engine::Device dev(dopt);
+  asset::HairAsset groom;
+  std::string groom_name;
+  if (!o.asset_path.empty()) {
+    asset::ReadResult read = asset::read_file(o.asset_path);
+    if (!read.ok()) throw std::runtime_error(read.error);
+    groom = std::move(read.asset);
+    groom_name = o.asset_path;
+  } else {
+    groom = baker::make_builtin_groom(o.builtin, o.groom);
+    groom_name = o.builtin;
+  }
+  const reference::ModelRest rest = reference::build_model_rest(groom);
+  const reference::SceneGeometry geometry = reference::scene_geometry(rest);
+  const std::vector<std::string> scenes = reference::scene_names();
+
+  TvkContextCreateInfo ci = dev.plugin_context_info();
+  ci.frames_in_flight = 1;  // every frame is submitted and waited for, so the state can be read back any time
+  TvkContext ctx = nullptr;
+  check(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+  const std::vector<std::byte> bytes = asset::write(groom);
+  TvkAsset asset = nullptr;
+  dev.run_commands([&](VkCommandBuffer cmd) {
+    TvkAssetLoadInfo li{};
+    li.struct_size = sizeof(li);
+    li.data = bytes.data();
+    li.size = bytes.size();
+    li.upload_command_buffer = cmd;
+    check(tressvk_load_asset(ctx, &li, &asset), ctx, "tressvk_load_asset");
+  });
+
+  std::mt19937_64 rng(o.seed);
+  const auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const auto chance = [&](double p) { return uniform(0, 1) < p; };
+  std::vector<SoakInstance> live;
+  Totals t;
+  bool ok = true;
+  std::string failure;
+  const auto fail = [&](const std::string& what) {
+    if (ok) failure = what;
+    ok = false;
+  };
+  uint32_t next_churn = 5;
+
+  const auto create_instance = [&] {
+    SoakInstance s;
+    TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+    TvkInstanceCreateInfo ic{};
+    ic.struct_size = sizeof(ic);
+    ic.asset = asset;
+    ic.settings = &settings;
+    check(tressvk_create_instance(ctx, &ic, &s.handle), ctx, "tressvk_create_instance");
+    s.scene = scenes[rng() % scenes.size()];
+    live.push_back(s);
+    ++t.created;
+  };
+  const auto destroy_instance = [&](size_t i) {
+    tressvk_destroy_instance(live[i].handle);
+    live.erase(live.begin() + static_cast<std::ptrdiff_t>(i));
+    ++t.destroyed;
+  };
+
+  create_instance();
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  bool warm = false;
+  while (elapsed() < o.seconds && (o.max_frames == 0 || t.frames < o.max_frames)) {
+    // Instance churn: every few frames one is created or destroyed (always at least one alive).
+    if (--next_churn == 0) {
+      next_churn = 3 + static_cast<uint32_t>(rng() % 20);
+      if (live.size() < o.max_instances && (live.size() <= 1 || chance(0.5)))
+        create_instance();
+      else if (live.size() > 1)
+        destroy_instance(rng() % live.size());
+    }
+    std::vector<TvkInstance> handles;
+    for (SoakInstance& s : live) {
+      if (s.scene_frame >= 240) {  // through every scene in turn
+        s.scene = scenes[rng() % scenes.size()];
+        s.scene_frame = 0;
+      }
+      TvkSimFrame frame = reference::scene_frame(s.scene, s.scene_frame++, geometry);
+      if (chance(0.01)) {  // a teleport up to 100 m away: the hair moves rigidly with it
+        for (double& x : s.offset) x += uniform(-100, 100);
+        frame.teleport = 1;
+        ++t.teleports;
+      }
+      for (int k = 0; k < 3; ++k) frame.transform.translation[k] += s.offset[k];
+      if (s.paused) {
+        frame.dt = 0;
+        --s.paused;
+      } else if (chance(0.01)) {
+        s.paused = 5 + static_cast<uint32_t>(rng() % 30);
+        ++t.pauses;
+      } else if (chance(0.01)) {
+        frame.dt = static_cast<float>(uniform(0.1, 0.5));  // a hitch: the planner caps the steps
+        ++t.hitches;
+      }
+      if (chance(0.005)) {
+        TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
+        p.global_stiffness = static_cast<float>(uniform(0.0, 0.3));
+        p.local_stiffness = static_cast<float>(uniform(0.05, 1.0));
+        p.damping = static_cast<float>(uniform(0.0, 0.3));
+        p.local_iterations = 1 + static_cast<uint32_t>(rng() % 4);
+        p.length_iterations = 1 + static_cast<uint32_t>(rng() % 3);
+        check(tressvk_set_sim_params(s.handle, TVK_ALL_GROUPS, &p), ctx, "tressvk_set_sim_params");
+        ++t.param_changes;
+      }
+      if (chance(0.002)) {
+        TvkSimSettings st = TVK_SIM_SETTINGS_DEFAULT_INIT;
+        const float rates[4] = {60.0f, 120.0f, 240.0f, 480.0f};
+        st.time.step_rate = rates[rng() % 4];
+        st.gravity[1] = static_cast<float>(uniform(-20.0, 0.0));
+        check(tressvk_set_sim_settings(s.handle, &st), ctx, "tressvk_set_sim_settings");
+        ++t.settings_changes;
+      }
+      if (chance(0.02)) frame.wind.direction[0] = static_cast<float>(uniform(-1, 1));
+      check(tressvk_set_frame(s.handle, &frame), ctx, "tressvk_set_frame");
+      handles.push_back(s.handle);
+      ++s.frame;
+    }
+    check(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+    dev.run_commands([&](VkCommandBuffer cmd) {
+      TvkSimulateInfo si{};
+      si.struct_size = sizeof(si);
+      si.instance_count = static_cast<uint32_t>(handles.size());
+      si.instances = handles.data();
+      check(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+    });
+    ++t.frames;
+    t.instance_frames += handles.size();
+
+    if (t.frames % o.check_every == 0) {
+      ++t.checks;
+      for (const SoakInstance& s : live) {
+        const engine::HairState state = engine::read_hair_state(dev, s.handle);
+        const auto h = reference::health(std::span<const std::array<double, 3>>(state.positions), rest);
+        const auto st = reference::stretch(std::span<const std::array<double, 3>>(state.positions), rest);
+        TvkInstanceStats stats{};
+        check(tressvk_get_instance_stats(s.handle, &stats), ctx, "tressvk_get_instance_stats");
+        t.nan_strands = std::max<uint64_t>(t.nan_strands, h.nan_strands);
+        t.exploded = std::max<uint64_t>(t.exploded, h.exploded_strands);
+        t.resets = std::max<uint64_t>(t.resets, stats.nonfinite_strand_resets);
+        t.stretch_max = std::max(t.stretch_max, st.max);
+        if (h.nan_strands) fail("NaN strands at frame " + std::to_string(t.frames));
+        if (stats.nonfinite_strand_resets) fail("non-finite resets at frame " + std::to_string(t.frames));
+        if (!(st.max <= o.max_stretch)) fail("stretch " + std::to_string(st.max) + " at frame " + std::to_string(t.frames));
+      }
+      // GPU memory with n live instances (after retiring released buffers) must not grow over the run.
+      check(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      check(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      TvkMemoryUsage usage{};
+      check(tressvk_get_memory_usage(ctx, &usage), ctx, "tressvk_get_memory_usage");
+      auto [it, first] = t.gpu_bytes_by_instances.try_emplace(static_cast<uint32_t>(live.size()), usage.device_bytes,
+                                                               usage.device_bytes);
+      it->second.second = usage.device_bytes;
+      if (!first && usage.device_bytes > it->second.first) {
+        t.gpu_flat = false;
+        fail("GPU memory grew with " + std::to_string(live.size()) + " instances: " +
+             std::to_string(it->second.first) + " -> " + std::to_string(usage.device_bytes) + " bytes");
+      }
+      const double rss = rss_mb();
+      if (!warm && elapsed() >= 0.1 * o.seconds) {
+        warm = true;
+        t.rss_start_mb = rss;
+      }
+      t.rss_max_mb = std::max(t.rss_max_mb, rss);
+      t.rss_end_mb = rss;
+      if (warm && rss > t.rss_start_mb + o.rss_slack_mb)
+        fail("resident memory grew from " + std::to_string(t.rss_start_mb) + " to " + std::to_string(rss) + " MB");
+    }
+    if (o.validation && dev.messages().count() > 0) fail("validation messages");
+    if (!ok) break;
+  }
+  dev.wait_idle();
+  while (!live.empty()) destroy_instance(live.size() - 1);
+  tressvk_destroy_asset(asset);
+  for (int i = 0; i < 3; ++i) tressvk_new_frame(ctx);
+  TvkMemoryUsage end_usage{};
+  tressvk_get_memory_usage(ctx, &end_usage);
+  if (end_usage.allocation_count != 0) fail("GPU allocations left after destroying everything");
+  tressvk_destroy_context(ctx);
+
+  const double secs = elapsed();
+  std::printf("soak        %s on %s, %.0f s, seed %llu\n", groom_name.c_str(), dev.name(), secs,
+              static_cast<unsigned long long>(o.seed));
+  std::printf("frames      %llu (%llu instance-frames), %llu instances created, %llu destroyed\n",
+              static_cast<unsigned long long>(t.frames), static_cast<unsigned long long>(t.instance_frames),
+              static_cast<unsigned long long>(t.created), static_cast<unsigned long long>(t.destroyed));
+  std::printf("events      %llu teleports, %llu hitches, %llu pauses, %llu parameter and %llu settings changes\n",
+              static_cast<unsigned long long>(t.teleports), static_cast<unsigned long long>(t.hitches),
+              static_cast<unsigned long long>(t.pauses), static_cast<unsigned long long>(t.param_changes),
+              static_cast<unsigned long long>(t.settings_changes));
+  std::printf("health      %llu checks: NaN strands max %llu, non-finite resets max %llu, exploded max %llu, "
+              "stretch max %.3g (limit %.3g)\n",
+              static_cast<unsigned long long>(t.checks), static_cast<unsigned long long>(t.nan_strands),
+              static_cast<unsigned long long>(t.resets), static_cast<unsigned long long>(t.exploded), t.stretch_max,
+              o.max_stretch);
+  std::printf("memory      GPU %s over the run (bytes by live instances:", t.gpu_flat ? "flat" : "GREW");
+  for (const auto& [n, v] : t.gpu_bytes_by_instances)
+    std::printf(" %u: %llu->%llu", n, static_cast<unsigned long long>(v.first), static_cast<unsigned long long>(v.second));
+  std::printf("); resident %.1f MB after warm-up, %.1f MB at the end, %.1f MB max\n", t.rss_start_mb, t.rss_end_mb,
+              t.rss_max_mb);
+  if (o.validation)
+    std::printf("validation  %llu message(s)\n", static_cast<unsigned long long>(dev.messages().count()));
+  std::printf("result      %s%s\n", ok ? "PASS" : "FAIL: ", failure.c_str());
+  if (!o.json_path.empty()) {
+    nlohmann::json j = {{"groom", groom_name}, {"device", dev.name()}, {"seconds", secs}, {"seed", o.seed},
+                        {"frames", t.frames}, {"instance_frames", t.instance_frames}, {"created", t.created},
+                        {"destroyed", t.destroyed}, {"teleports", t.teleports}, {"hitches", t.hitches},
+                        {"pauses", t.pauses}, {"param_changes", t.param_changes},
+                        {"settings_changes", t.settings_changes}, {"checks", t.checks},
+                        {"nan_strands_max", t.nan_strands}, {"nonfinite_resets_max", t.resets},
+                        {"exploded_strands_max", t.exploded}, {"stretch_max", t.stretch_max},
+                        {"gpu_memory_flat", t.gpu_flat}, {"rss_after_warmup_mb", t.rss_start_mb},
+                        {"rss_end_mb", t.rss_end_mb}, {"rss_max_mb", t.rss_max_mb}, {"pass", ok}, {"failure", failure}};
+    std::ofstream f(o.json_path);
+    f << j.dump(2) << "\n";
+  }
+  return ok ? 0 : 1;
+}
+
+}  // namespace tressvk::bench
