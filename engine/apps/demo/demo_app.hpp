@@ -18,8 +18,10 @@
 #include <tressvk/engine/image.hpp>
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace tressvk::demo {
@@ -51,6 +53,9 @@ class DemoApp {
   TvkRenderer renderer() const { return hair_->renderer(); }
   // TVK_RASTER_* flags of the compute path for the frames recorded from now on (tressvk-bench, tests).
   void set_raster_flags(uint32_t flags) { options_.raster_flags = flags; }
+  // With Options::pass_timestamps: the plugin's per-pass GPU times of the frames completed so far, per pass name
+  // (collected when each frame is recorded, for the frame the plugin's promise says is complete).
+  std::map<std::string, std::vector<double>>& pass_ms() { return pass_ms_; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -67,6 +72,7 @@ class DemoApp {
   std::unique_ptr<HairHost> hair_;
   std::vector<engine::Buffer> readback_;  // one per frame slot
   std::vector<uint32_t> strands_;         // strands drawn, per slot
+  std::map<std::string, std::vector<double>> pass_ms_;
   TvkHairMaterial material_{};
 };
 

@@ -38,7 +38,9 @@ TvkResult record_composite(TvkRenderer_T& r, VkCommandBuffer cmd) {
   ctx.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.composite);
   ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.composite_layout, 0, 1, &set, 0, nullptr);
   ctx.vk.vkCmdPushConstants(cmd, s.composite_layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(size), size);
+  const uint32_t timed = ctx.time_begin(cmd);
   ctx.vk.vkCmdDraw(cmd, 3, 1, 0, 0);
+  ctx.time_end(cmd, timed, "render.composite");
   return TVK_SUCCESS;
 }
 
