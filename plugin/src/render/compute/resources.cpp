@@ -178,7 +178,7 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 0, p[2]);
   if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, 0, p[3]);
   if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 1, p[4]);
-  if (res == TVK_SUCCESS && !p[5]) res = make_compute(ctx, s.layout, k_spv_fine_comp, 0, p[5]);
+  if (res == TVK_SUCCESS && !p[5]) res = make_compute(ctx, s.layout, k_spv_fine_comp, kSliceCapacity, p[5]);
   if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 0, p[6]);
   if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 1, p[7]);
   return res;
