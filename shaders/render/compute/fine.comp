@@ -214,5 +214,12 @@ void main() {
   if (lid == 0u) {
     atomicAdd(counters[4], s_frags);
     atomicAdd(counters[5], s_hair);
+    if (s_hair > 0u) {  // the rectangle of tiles with hair, for the composite (after the layer's pixels)
+      const uint at = pc.size.x * pc.size.y;
+      atomicMax(image[at].x, 65535u - gl_WorkGroupID.x);
+      atomicMax(image[at].y, 65535u - gl_WorkGroupID.y);
+      atomicMax(image[at + 1u].x, gl_WorkGroupID.x + 1u);
+      atomicMax(image[at + 1u].y, gl_WorkGroupID.y + 1u);
+    }
   }
 }

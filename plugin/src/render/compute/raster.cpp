@@ -121,13 +121,15 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   // The previous frame's raster and composite calls used the same buffers: wait for them (and make their
   // writes available) before clearing.
   memory_barrier(ctx, cmd,
-                 kCompute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 kCompute | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                  kCompute | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  kStorageRW | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   uint32_t timed = ctx.time_begin(cmd);  // per-pass GPU times (tressvk_get_pass_timings) when timestamps are on
   ctx.vk.vkCmdFillBuffer(cmd, s.tiles.buffer, 0, 4 * tile_count, 0);
   ctx.vk.vkCmdFillBuffer(cmd, s.counters.buffer, 0, 4 * kCounterCount, 0);
+  ctx.vk.vkCmdFillBuffer(cmd, s.image.buffer, 8 * uint64_t{width} * height, 16, 0);  // hair bounds (fine.comp)
   const VkDeviceSize dom_texels = VkDeviceSize{kDomSize} * kDomSize;
   if (shadowed) {
     ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 0, 4 * dom_texels, 0x7f800000u);  // nearest hair: +infinity
@@ -178,7 +180,8 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   ctx.time_end(cmd, timed, "render.fine");
   // The layer for the composite call's fragment shader; the counters (and captures) for the copies below.
   memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy counters{0, 0, 4 * kCounterCount};
   ctx.vk.vkCmdCopyBuffer(cmd, s.counters.buffer, s.stats_readback.buffer, 1, &counters);
