@@ -34,6 +34,8 @@ row() {  # name, then bench arguments
     grep -E '"(device|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|strands_drawn)"' "$OUT/$name.json" |
       tr -d '\n' >> "$OUT/summary.txt"
     echo >> "$OUT/summary.txt"
+    sed -n '/"gpu_ms_passes"/,/}/p' "$OUT/$name.json" | tr -d '\n ' >> "$OUT/summary.txt"
+    echo >> "$OUT/summary.txt"
   else
     echo "FAILED ($?): $(tail -3 "$OUT/$name.log")" >> "$OUT/summary.txt"
   fi

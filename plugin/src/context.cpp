@@ -65,6 +65,26 @@ TvkResult Context::check(VkResult vr, const char* what) {
   return fail(TVK_ERROR_VULKAN, "%s failed: %s", what, vk_result_name(vr));
 }
 
+uint32_t Context::time_begin(VkCommandBuffer cmd) {
+  if (!timestamp_pool) return UINT32_MAX;
+  const uint32_t slice = static_cast<uint32_t>(frame % frames_in_flight);
+  TimedSlice& t = timed_slices[slice];
+  const auto pair = static_cast<uint32_t>(t.pass_names.size());
+  if (t.frame != frame || 2 * (pair + 1) > queries_per_frame) return UINT32_MAX;
+  vk.vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamp_pool, slice * queries_per_frame + 2 * pair);
+  t.pass_names.emplace_back();  // named by time_end
+  t.dispatches.push_back(1);
+  return pair;
+}
+
+void Context::time_end(VkCommandBuffer cmd, uint32_t pair, const char* name) {
+  if (pair == UINT32_MAX) return;
+  const uint32_t slice = static_cast<uint32_t>(frame % frames_in_flight);
+  vk.vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, timestamp_pool,
+                          slice * queries_per_frame + 2 * pair + 1);
+  timed_slices[slice].pass_names[pair] = name;
+}
+
 const char* vk_result_name(VkResult result) {
   switch (result) {
 #define TVK_CASE(x) case x: return #x
@@ -156,8 +176,8 @@ TvkResult init_context(Context& ctx) {
     vkGetPhysicalDeviceQueueFamilyProperties(info.physical_device, &family_count, families.data());
     if (info.queue_family_index < family_count && families[info.queue_family_index].timestampValidBits > 0 &&
         ctx.device_properties.limits.timestampPeriod > 0.0f) {
-      // Two queries per pass slot: up to 4 passes per substep plus the follow pass.
-      ctx.queries_per_frame = 2 * (4 * TVK_MAX_STEPS_PER_FRAME + 1);
+      // Two queries per pass slot: up to 4 passes per substep plus the follow pass, then the rendering passes.
+      ctx.queries_per_frame = 2 * (4 * TVK_MAX_STEPS_PER_FRAME + 1 + Context::kRenderQueryPairs);
       VkQueryPoolCreateInfo qci{};
       qci.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
       qci.queryType = VK_QUERY_TYPE_TIMESTAMP;

@@ -64,6 +64,13 @@ struct Context {
     std::vector<uint32_t> dispatches;     // dispatches in that pair
   };
   std::vector<TimedSlice> timed_slices;
+  // Query pairs per frame slice kept for the hair rendering calls (after the simulation's).
+  static constexpr uint32_t kRenderQueryPairs = 16;
+
+  // Per-pass timestamps of the rendering calls, in the slice tressvk_cmd_simulate reset for this frame (nothing
+  // when timestamps are off or no simulate was recorded this frame). begin returns the pair or UINT32_MAX.
+  uint32_t time_begin(VkCommandBuffer cmd);
+  void time_end(VkCommandBuffer cmd, uint32_t pair, const char* name);
 
   // Records an error, forwards it to the host's callback, and returns `result` for `return ctx.fail(...)`.
   TvkResult fail(TvkResult result, const char* format, ...) __attribute__((format(printf, 3, 4)));

@@ -83,6 +83,7 @@ int run_render_bench(const RenderBenchOptions& o) {
                                                       {"shake", demo::Animation::shake},
                                                       {"run", demo::Animation::run}};
     d.animate = anim.at(o.animate);
+    d.pass_timestamps = o.path == "compute";  // where the hair's time goes, pass by pass (gpu_ms_passes)
     d.sample = o.sample == "sphere" ? demo::Sample::sphere : demo::Sample::head;
     std::string groom = o.asset.empty() ? (o.sample == "sphere" ? "sphere sample" : "bundled head sample")
                                         : std::filesystem::path(o.asset).filename().string();
@@ -117,6 +118,7 @@ int run_render_bench(const RenderBenchOptions& o) {
     std::vector<double> hair_shadow, hair, shadow, shading;
     uint32_t strands = 0;
     app.run(o.warmup, [](demo::FrameReport&) {});
+    app.pass_ms().clear();
     app.run(o.frames, [&](demo::FrameReport& f) {
       if (f.hair_shadow_ms) hair_shadow.push_back(*f.hair_shadow_ms);
       if (f.hair_ms) hair.push_back(*f.hair_ms);
@@ -140,6 +142,10 @@ int run_render_bench(const RenderBenchOptions& o) {
     j["gpu_ms_hair_total"] = median(hair_shadow) + median(hair);
     j["gpu_ms_shadow_pass_with_meshes"] = median(shadow);
     j["gpu_ms_shading_pass_with_meshes"] = median(shading);
+    // Medians per pass of the same frames (timestamps between the passes; tile_depth runs beside vertex).
+    j["gpu_ms_passes"] = nlohmann::json::object();
+    for (const auto& [name, ms] : app.pass_ms())
+      if (name.starts_with("render.")) j["gpu_ms_passes"][name.substr(7)] = median(ms);
     j["k"] = nullptr;
     for (const char* key : {"error_mean", "error_p99", "error_max", "hair_pixels", "fragments_per_pixel_mean",
                             "memory_bytes"})

@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -64,7 +65,7 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
       flavour_(flavour),
       scene_(build_scene(options)),
       target_(engine::create_offscreen_target(device, options.width, options.height, kColorFormat, kDepthFormat)),
-      plugin_(device, kFramesInFlight, /*timestamps=*/false) {
+      plugin_(device, kFramesInFlight, options.pass_timestamps) {
   if (flavour_ == PassFlavour::render_pass) {
     render_pass_ = engine::RenderPassTarget(device, target_);
     render_pass_load_ = engine::RenderPassTarget(device, target_, /*load=*/true);
@@ -143,6 +144,11 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   sim.wind = wind_at(options_.animate, t, params_.wind);
   check_tvk(tressvk_set_frame(hair_->instance(), &sim), ctx, "tressvk_set_frame");
   check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+  if (options_.pass_timestamps) {
+    std::array<TvkPassTiming, 64> timings{};
+    const uint32_t count = std::min<uint32_t>(tressvk_get_pass_timings(ctx, timings.data(), 64), 64);
+    for (uint32_t i = 0; i < count; ++i) pass_ms_[timings[i].name].push_back(timings[i].milliseconds);
+  }
 
   // ---- Camera and light, in double (world).
   const glm::dmat4 model = instance_matrix(sim.transform);

@@ -21,8 +21,10 @@
 #include <glm/glm.hpp>
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace tressvk::demo {
@@ -57,6 +59,9 @@ class DemoApp {
   void set_raster_flags(uint32_t flags) { options_.raster_flags = flags; }
   // The parameters in effect (the file's, completed with the scene's and the command line's choices).
   const Params& params() const { return params_; }
+  // With Options::pass_timestamps: the plugin's per-pass GPU times of the frames completed so far, per pass name
+  // (collected when each frame is recorded, for the frame the plugin's promise says is complete).
+  std::map<std::string, std::vector<double>>& pass_ms() { return pass_ms_; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -74,6 +79,7 @@ class DemoApp {
   std::vector<engine::Buffer> readback_;  // one per frame slot
   std::vector<uint32_t> strands_;         // strands drawn, per slot
   std::vector<glm::dmat4> view_proj_;     // camera, per slot
+  std::map<std::string, std::vector<double>> pass_ms_;
   TvkHairMaterial material_{};
   Params params_;
 };

@@ -41,6 +41,7 @@ struct Options {
   Animation animate = Animation::showcase;
   float wind = 0.0f;   // m/s^2
   bool shadows = true;
+  bool pass_timestamps = false;  // the plugin times each of its passes (tressvk_get_pass_timings)
   HairPath hair_path = HairPath::compute;  // --path
   uint32_t raster_flags = 0;               // tests: TVK_RASTER_* flags of the compute path (capture, reverse)
   // Not on the command line of the default run, but used by tests and docs:

@@ -259,7 +259,9 @@ typedef struct TvkPassTiming {
 } TvkPassTiming;
 
 /* Per-pass GPU times of the newest frame that tressvk_new_frame's promise says is complete (needs
- * enable_timestamps at context creation and a queue family with timestamp support). Returns the number of passes;
+ * enable_timestamps at context creation and a queue family with timestamp support). The compute hair path's
+ * passes of that frame follow the simulation's, named "render.*" (recorded after tressvk_cmd_simulate in the same
+ * frame; a frame without a simulate call times none of them). Returns the number of passes;
  * writes at most `capacity`. 0 when no results are available. */
 TVK_API uint32_t tressvk_get_pass_timings(TvkContext context, TvkPassTiming* timings, uint32_t capacity);
 

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // Compute rasterizer, pass 5: one workgroup per 8 x 8 tile, one thread per pixel. The tile's segments are
 // composited front to back in depth order:
 // - a tile with at most kCap segments sorts them all in shared memory (bitonic sort on the depth key);
@@ -15,9 +16,10 @@
 // Each pixel point belongs to the segment its centre projects onto (t in [0, 1); the strand's last segment
 // includes its tip), so consecutive segments of a strand never both cover it along the strand.
 layout(local_size_x = 8, local_size_y = 8) in;
+// Segments sorted at once per tile slice (kSliceCapacity in plugin/src/render/compute/state.hpp, a power of two).
+layout(constant_id = 0) const uint kCap = 1024u;
 #include "render/compute/raster_layout.glsl"
 
-const uint kCap = 1024u;
 const uint kBins = 256u;
 const float kOpaque = 1.0 - 0.5 / 255.0;
 
@@ -69,10 +71,17 @@ void main() {
   const bool sliced = count > kCap;
   uint kmin = 0u, kmax = 0u;
   if (sliced) {
+    uint lmin = 0xffffffffu, lmax = 0u;
     for (uint e = lid; e < count; e += 64u) {
       const uint key = entries[first + e].x;
-      atomicMin(s_kmin, key);
-      atomicMax(s_kmax, key);
+      lmin = min(lmin, key);
+      lmax = max(lmax, key);
+    }
+    lmin = subgroupMin(lmin);  // one shared atomic per subgroup, not one per entry on a single address
+    lmax = subgroupMax(lmax);
+    if (subgroupElect()) {
+      atomicMin(s_kmin, lmin);
+      atomicMax(s_kmax, lmax);
     }
     barrier();
     kmin = s_kmin;
@@ -205,5 +214,12 @@ void main() {
   if (lid == 0u) {
     atomicAdd(counters[4], s_frags);
     atomicAdd(counters[5], s_hair);
+    if (s_hair > 0u) {  // the rectangle of tiles with hair, for the composite (after the layer's pixels)
+      const uint at = pc.size.x * pc.size.y;
+      atomicMax(image[at].x, 65535u - gl_WorkGroupID.x);
+      atomicMax(image[at].y, 65535u - gl_WorkGroupID.y);
+      atomicMax(image[at + 1u].x, gl_WorkGroupID.x + 1u);
+      atomicMax(image[at + 1u].y, gl_WorkGroupID.y + 1u);
+    }
   }
 }

@@ -1,5 +1,5 @@
-// tressvk_cmd_composite_hair: the hair layer of the last raster call blended over the host's colour target, one
-// full-screen triangle inside the host's pass.
+// tressvk_cmd_composite_hair: the hair layer of the last raster call blended over the host's colour target, a
+// rectangle over the tiles with hair (composite.vert) inside the host's pass.
 #include "state.hpp"
 
 namespace tressvk::render::compute {
@@ -37,8 +37,11 @@ TvkResult record_composite(TvkRenderer_T& r, VkCommandBuffer cmd) {
   const uint32_t size[4] = {s.width, s.height, 0, 0};
   ctx.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.composite);
   ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.composite_layout, 0, 1, &set, 0, nullptr);
-  ctx.vk.vkCmdPushConstants(cmd, s.composite_layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(size), size);
-  ctx.vk.vkCmdDraw(cmd, 3, 1, 0, 0);
+  ctx.vk.vkCmdPushConstants(cmd, s.composite_layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                            sizeof(size), size);
+  const uint32_t timed = ctx.time_begin(cmd);
+  ctx.vk.vkCmdDraw(cmd, 6, 1, 0, 0);  // the rectangle of the tiles with hair (composite.vert)
+  ctx.time_end(cmd, timed, "render.composite");
   return TVK_SUCCESS;
 }
 

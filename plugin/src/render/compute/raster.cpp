@@ -121,18 +121,26 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   // The previous frame's raster and composite calls used the same buffers: wait for them (and make their
   // writes available) before clearing.
   memory_barrier(ctx, cmd,
-                 kCompute | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 kCompute | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                  kCompute | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  kStorageRW | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+  uint32_t timed = ctx.time_begin(cmd);  // per-pass GPU times (tressvk_get_pass_timings) when timestamps are on
   ctx.vk.vkCmdFillBuffer(cmd, s.tiles.buffer, 0, 4 * tile_count, 0);
   ctx.vk.vkCmdFillBuffer(cmd, s.counters.buffer, 0, 4 * kCounterCount, 0);
+  ctx.vk.vkCmdFillBuffer(cmd, s.image.buffer, 8 * uint64_t{width} * height, 16, 0);  // hair bounds (fine.comp)
   const VkDeviceSize dom_texels = VkDeviceSize{kDomSize} * kDomSize;
   if (shadowed) {
     ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 0, 4 * dom_texels, 0x7f800000u);  // nearest hair: +infinity
     ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 4 * dom_texels, 4 * dom_texels * kDomLayers, 0);
   }
   memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute, kStorageRW);
+  const auto next = [&](const char* finished) {  // closes the timed pass `finished`, opens the next
+    ctx.time_end(cmd, timed, finished);
+    timed = ctx.time_begin(cmd);
+  };
+  next("render.clear");
 
   ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &set, 0, nullptr);
   ctx.vk.vkCmdPushConstants(cmd, s.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
@@ -146,26 +154,34 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
     bind(Pass::dom_layers);
     ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
     compute_to_compute(ctx, cmd);
+    next("render.dom");
   }
   bind(Pass::vertex);
   ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
-  bind(Pass::tile_depth);
+  next("render.vertex");
+  bind(Pass::tile_depth);  // no barrier from the vertex pass: its time may overlap the vertex pass's
   ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
   compute_to_compute(ctx, cmd);
+  next("render.tile_depth");
   bind(Pass::count);
   ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
   compute_to_compute(ctx, cmd);
+  next("render.bin_count");
   bind(Pass::scan);
   ctx.vk.vkCmdDispatch(cmd, 1, 1, 1);
   compute_to_compute(ctx, cmd);
+  next("render.scan");
   bind(Pass::scatter);
   ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
   compute_to_compute(ctx, cmd);
+  next("render.bin_scatter");
   bind(Pass::fine);
   ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
+  ctx.time_end(cmd, timed, "render.fine");
   // The layer for the composite call's fragment shader; the counters (and captures) for the copies below.
   memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                 VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy counters{0, 0, 4 * kCounterCount};
   ctx.vk.vkCmdCopyBuffer(cmd, s.counters.buffer, s.stats_readback.buffer, 1, &counters);

@@ -178,7 +178,7 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 0, p[2]);
   if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, 0, p[3]);
   if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 1, p[4]);
-  if (res == TVK_SUCCESS && !p[5]) res = make_compute(ctx, s.layout, k_spv_fine_comp, 0, p[5]);
+  if (res == TVK_SUCCESS && !p[5]) res = make_compute(ctx, s.layout, k_spv_fine_comp, kSliceCapacity, p[5]);
   if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 0, p[6]);
   if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 1, p[7]);
   return res;
@@ -193,7 +193,7 @@ TvkResult ensure_composite_pipeline(TvkRenderer_T& r) {
     b.binding = 0;
     b.descriptorCount = 1;
     b.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    b.stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+    b.stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;  // the vertex shader reads the bounds
     VkDescriptorSetLayoutCreateInfo ci{};
     ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
     ci.bindingCount = 1;
@@ -203,7 +203,7 @@ TvkResult ensure_composite_pipeline(TvkRenderer_T& r) {
                                   "vkCreateDescriptorSetLayout (hair composite)");
         res != TVK_SUCCESS)
       return res;
-    const VkPushConstantRange range{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 16};
+    const VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, 16};
     VkPipelineLayoutCreateInfo pci{};
     pci.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
     pci.setLayoutCount = 1;
@@ -321,7 +321,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   }
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.counters, 4 * kCounterCount, storage, Memory::device, "hair compute counters");
-  if (res == TVK_SUCCESS) res = grow(ctx, s.image, 8 * pixels, storage, Memory::device, "hair compute layer");
+  if (res == TVK_SUCCESS) res = grow(ctx, s.image, 8 * pixels + 16, storage, Memory::device, "hair compute layer");
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.dom, 4ull * kDomSize * kDomSize * (1 + kDomLayers), storage, Memory::device,
                "hair deep opacity map");

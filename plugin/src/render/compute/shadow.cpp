@@ -88,6 +88,7 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
   region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
   region.imageExtent = {width, height, 1};
   // The previous frame's copies used the buffer; then the map into it, the hair on top, and back.
+  const uint32_t timed = ctx.time_begin(cmd);  // the whole call: copy out, hair depth, copy back
   barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   ctx.vk.vkCmdCopyImageToBuffer(cmd, info->shadow_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, s.shadow_depth.buffer,
@@ -120,6 +121,7 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
   ctx.vk.vkCmdCopyBufferToImage(cmd, s.shadow_depth.buffer, info->shadow_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                 1, &region);
+  ctx.time_end(cmd, timed, "render.shadow");
   r.last_drawn_strands = drawn;
   return TVK_SUCCESS;
 }

@@ -23,7 +23,7 @@ struct Push {
 };
 
 constexpr uint32_t kTile = 8;
-constexpr uint32_t kSliceCapacity = 1024;
+constexpr uint32_t kSliceCapacity = 256;  // fine.comp kCap (a specialization constant): segments sorted at once per tile slice
 constexpr uint32_t kCounterCount = 8;
 constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster_layout.glsl)
 constexpr uint32_t kDomLayers = 4;
