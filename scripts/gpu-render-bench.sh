@@ -52,22 +52,24 @@ if [ -f "$DATA/sintel/sintel_hair.tfx" ]; then
   "$BAKE" "$DATA/sintel/sintel_hair.tfx" --scale 0.0046 --follow 6 -o "$SINTEL" > "$OUT/bake_sintel.log" 2>&1
 fi
 
-# The targets: bundled sample, Ratboy mohawk + 4 follows, 100,000 strands x 32 (compute path, 1080p).
-row sample-compute-1080p $HD $TIMED --png "$OUT/sample-compute-1080p.png"
+# The targets: the sphere sample (9,600 x 48, the "bundled sample" before the head sample), Ratboy mohawk + 4 follows, 100,000 strands x 32 (compute path, 1080p).
+row sample-compute-1080p --sample sphere $HD $TIMED --png "$OUT/sample-compute-1080p.png"
+# The bundled head sample (the demo's default scene: face, straight groom, head turn).
+row head-compute-1080p --sample head $HD $TIMED --png "$OUT/head-compute-1080p.png"
 [ -n "$RATBOY" ] && row ratboy4-compute-1080p --asset "$RATBOY" $HD $TIMED --animate shake --png "$OUT/ratboy4-compute-1080p.png"
 row 100k-compute-1080p --guides 12500 --follows 7 --vertices 32 $HD $TIMED
 [ "${QUICK:-0}" = 1 ] && exit 0
 
 # The raster path on the same frames (speed only: it has no capture for the reference).
-row sample-raster-1080p $HD --frames 10 --warmup 5 --path raster --png "$OUT/sample-raster-1080p.png"
+row sample-raster-1080p --sample sphere $HD --frames 10 --warmup 5 --path raster --png "$OUT/sample-raster-1080p.png"
 [ -n "$RATBOY" ] && row ratboy4-raster-1080p --asset "$RATBOY" $HD --frames 10 --warmup 5 --animate shake --path raster
 # Sintel with her mesh (hair in front of and behind an opaque mesh).
 [ -n "$SINTEL" ] && row sintel6-compute-1080p --asset "$SINTEL" --mesh "$DATA/sintel/sintel.obj" --mesh-scale 0.0046 \
   $HD $TIMED --png "$OUT/sintel6-compute-1080p.png"
 # Speed against error: resolution and LOD.
-row sample-compute-540p --width 960 --height 540 $TIMED
-row sample-compute-2160p --width 3840 --height 2160 $TIMED
-row sample-compute-1080p-lod50 $HD $TIMED --lod-fraction 0.5
-row sample-compute-1080p-lod25 $HD $TIMED --lod-fraction 0.25
+row sample-compute-540p --sample sphere --width 960 --height 540 $TIMED
+row sample-compute-2160p --sample sphere --width 3840 --height 2160 $TIMED
+row sample-compute-1080p-lod50 --sample sphere $HD $TIMED --lod-fraction 0.5
+row sample-compute-1080p-lod25 --sample sphere $HD $TIMED --lod-fraction 0.25
 row 100k-compute-1080p-lod25 --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25
 row 100k-compute-2160p --guides 12500 --follows 7 --vertices 32 --width 3840 --height 2160 $TIMED
