@@ -90,6 +90,11 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
 DemoApp::~DemoApp() { device_.wait_idle(); }
 
 void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_frame) {
+  uint32_t f = 0;
+  run_while([&] { return f++ < frames; }, on_frame);
+}
+
+void DemoApp::run_while(const std::function<bool()>& next_frame, const std::function<void(FrameReport&)>& on_frame) {
   engine::FrameLoop loop(device_, kFramesInFlight, kTimestamps, [&](const engine::FrameLoop::Frame& done) {
     FrameReport report;
     report.index = static_cast<uint32_t>(done.number);
@@ -101,7 +106,7 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
     report.view_proj = view_proj_[done.slot];
     on_frame(report);
   });
-  for (uint32_t f = 0; f < frames; ++f) {
+  while (next_frame()) {
     record(loop.begin());
     loop.end();
   }
@@ -110,11 +115,13 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
 
 void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const TvkContext ctx = plugin_.get();
-  const double t = static_cast<double>(frame.number + 1) * options_.frame_time;
+  const double dt = view_.paused ? 0.0 : options_.frame_time;
+  time_ += dt;
+  const double t = time_;
 
   // ---- The frame's simulation input: head motion, colliders, wind.
   TvkSimFrame sim{};
-  sim.dt = static_cast<float>(options_.frame_time);
+  sim.dt = static_cast<float>(dt);
   sim.transform = animate(options_.animate, t);
   for (int i = 0; i < 3; ++i) sim.transform.translation[i] += options_.world_offset[i];
   sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
@@ -128,12 +135,17 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const glm::dvec3 center = glm::dvec3(model * glm::dvec4(scene_.center[0], scene_.center[1], scene_.center[2], 1.0));
   const double fov = glm::radians(30.0);
   const double aspect = static_cast<double>(options_.width) / options_.height;
-  const double distance = options_.camera_distance > 0.0f
-                              ? double{options_.camera_distance}
-                              : 0.9 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect));
-  const glm::dvec3 eye =
-      center + glm::normalize(glm::dvec3(scene_.view_direction[0], scene_.view_direction[1], scene_.view_direction[2])) *
-                   distance;
+  const double distance = view_.zoom * (options_.camera_distance > 0.0f
+                                            ? double{options_.camera_distance}
+                                            : 0.9 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect)));
+  glm::dvec3 dir =
+      glm::normalize(glm::dvec3(scene_.view_direction[0], scene_.view_direction[1], scene_.view_direction[2]));
+  if (view_.yaw != 0.0 || view_.pitch != 0.0) {  // orbit: yaw about +y, then pitch, clamped short of the poles
+    const double yaw = std::atan2(dir.x, dir.z) + view_.yaw;
+    const double pitch = std::clamp(std::asin(std::clamp(dir.y, -1.0, 1.0)) + view_.pitch, -1.45, 1.45);
+    dir = glm::dvec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+  }
+  const glm::dvec3 eye = center + dir * distance;
   glm::dmat4 proj = glm::perspectiveRH_ZO(fov, aspect, 0.02 * distance, 10.0 * distance + 4.0 * scene_.radius);
   proj[1][1] *= -1.0;  // Vulkan clip space: +y is down
   SceneFrame sf;

@@ -33,6 +33,15 @@ struct FrameReport {
   glm::dmat4 view_proj{1.0};  // the camera's world -> clip transform of this frame (Vulkan clip space)
 };
 
+// What an interactive host changes between frames (tressvk-viewer): an orbit around the framed centre, a zoom
+// factor on the framing distance, and a pause that holds the animation clock (the hair then settles in place).
+struct ViewControl {
+  double yaw = 0.0;    // radians about world +y, added to the scene's view direction
+  double pitch = 0.0;  // radians up (+) or down, clamped short of the poles
+  double zoom = 1.0;   // multiplies the camera distance
+  bool paused = false;
+};
+
 enum class PassFlavour { dynamic_rendering, render_pass };
 
 class DemoApp {
@@ -45,6 +54,12 @@ class DemoApp {
 
   // Renders `frames` frames; on_frame gets each finished frame in order.
   void run(uint32_t frames, const std::function<void(FrameReport&)>& on_frame);
+  // Renders frames while next_frame() says so (a windowed host polls its events there).
+  void run_while(const std::function<bool()>& next_frame, const std::function<void(FrameReport&)>& on_frame);
+
+  void set_view(const ViewControl& view) { view_ = view; }
+  const ViewControl& view() const { return view_; }
+  double time() const { return time_; }  // s of animation shown
 
   const Scene& scene() const { return scene_; }
   TvkContext plugin() const { return plugin_.get(); }
@@ -69,6 +84,8 @@ class DemoApp {
   std::vector<glm::dmat4> view_proj_;     // camera, per slot
   TvkHairMaterial material_{};
   Params params_;
+  ViewControl view_;
+  double time_ = 0.0;
 };
 
 }  // namespace tressvk::demo
