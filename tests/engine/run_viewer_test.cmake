@@ -1,0 +1,55 @@
+# cmake -P script (see CMakeLists.txt): tressvk-viewer in a window under Xvfb (xvfb-run), on lavapipe with
+# validation and synchronization validation. Checks exit 0, "validation: 0 message(s)", and that the screenshot
+# shows hair (CHECK renders the same frame without hair and compares). Then the bad input: a missing file and a
+# broken one give exit code 2 and a message naming the file, with no window needed to say so.
+foreach(var VIEWER CHECK XVFB_RUN OUT_DIR)
+  if(NOT ${var})
+    message(FATAL_ERROR "run_viewer_test.cmake: ${var} is not set")
+  endif()
+endforeach()
+file(REMOVE_RECURSE "${OUT_DIR}")
+file(MAKE_DIRECTORY "${OUT_DIR}")
+set(frames 4)
+set(shot "${OUT_DIR}/viewer.png")
+# -a: a free display number (tests may run in parallel); 24-bit screen for an 8-bit BGRA swapchain.
+execute_process(COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24" "${VIEWER}" --frames ${frames} --validation
+                        --width 320 --height 180 --screenshot "${shot}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "tressvk-viewer exited with ${rc}\n--- stderr:\n${err}")
+endif()
+if(NOT out MATCHES "validation: 0 message\\(s\\)")
+  message(FATAL_ERROR "tressvk-viewer did not report a validation-clean run\n--- stderr:\n${err}")
+endif()
+if(NOT out MATCHES "frames: ${frames}\n")
+  message(FATAL_ERROR "tressvk-viewer did not show ${frames} frames")
+endif()
+execute_process(COMMAND "${CHECK}" "${shot}" ${frames} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the screenshot check failed (${rc})\n--- stderr:\n${err}")
+endif()
+
+# Bad input: exit code 2 and a message that names the file.
+set(missing "${OUT_DIR}/no-such-groom.tvkhair")
+execute_process(COMMAND "${VIEWER}" "${missing}" --frames 1 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "no-such-groom.tvkhair: no such file")
+  message(FATAL_ERROR "missing file: expected exit 2 and a message naming it, got ${rc}\n--- stderr:\n${err}")
+endif()
+set(broken "${OUT_DIR}/broken.tvkhair")
+file(WRITE "${broken}" "this is not a baked hair asset\n")
+execute_process(COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24" "${VIEWER}" "${broken}" --frames 1 --validation
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "broken.tvkhair: ")
+  message(FATAL_ERROR "broken file: expected exit 2 and a message naming it, got ${rc}\n--- stdout:\n${out}\n--- stderr:\n${err}")
+endif()
+message("bad input: ${err}")
+set(bad_params "${OUT_DIR}/broken.json")
+file(WRITE "${bad_params}" "{ \"simulation\": \n")
+execute_process(COMMAND "${VIEWER}" --params "${bad_params}" --frames 1 RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "broken.json")
+  message(FATAL_ERROR "broken parameter file: expected exit 2 and a message naming it, got ${rc}\n--- stderr:\n${err}")
+endif()
+message("bad parameters: ${err}")
