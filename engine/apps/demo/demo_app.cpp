@@ -48,7 +48,7 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
       flavour_(flavour),
       scene_(build_scene(options)),
       target_(engine::create_offscreen_target(device, options.width, options.height, kColorFormat, kDepthFormat)),
-      plugin_(device, kFramesInFlight, /*timestamps=*/false) {
+      plugin_(device, kFramesInFlight, options.pass_timings) {
   if (flavour_ == PassFlavour::render_pass) render_pass_ = engine::RenderPassTarget(device, target_);
   scene_renderer_ = std::make_unique<SceneRenderer>(device, kColorFormat, kDepthFormat, kShadowMapSize,
                                                     kFramesInFlight, scene_.head, scene_.floor,
@@ -88,6 +88,20 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
 }
 
 DemoApp::~DemoApp() { device_.wait_idle(); }
+
+void DemoApp::apply_params() {
+  const TvkContext ctx = plugin_.get();
+  for (uint32_t g = 0; g < hair_->info().group_count; ++g)
+    check_tvk(tressvk_set_sim_params(hair_->instance(), g, &params_.simulation), ctx, "tressvk_set_sim_params");
+  check_tvk(tressvk_set_sim_settings(hair_->instance(), &params_.settings), ctx, "tressvk_set_sim_settings");
+  material_ = params_.material;
+}
+
+std::vector<TvkPassTiming> DemoApp::pass_timings() const {
+  std::vector<TvkPassTiming> t(32);
+  t.resize(tressvk_get_pass_timings(plugin_.get(), t.data(), static_cast<uint32_t>(t.size())));
+  return t;
+}
 
 void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_frame) {
   uint32_t f = 0;

@@ -66,6 +66,12 @@ class DemoApp {
   const TvkAssetInfo& asset_info() const { return hair_->info(); }
   // The parameters in effect (the file's, completed with the scene's and the command line's choices).
   const Params& params() const { return params_; }
+  // Live tuning (the viewer's panel): edit tuning(), then apply_params() hands simulation, settings and material
+  // to the plugin; wind and LOD are read every frame.
+  Params& tuning() { return params_; }
+  void apply_params();
+  // The plugin's per-pass GPU times of the newest complete frame (Options::pass_timings; empty without).
+  std::vector<TvkPassTiming> pass_timings() const;
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
