@@ -3,6 +3,7 @@
 // Bad input (a missing or broken file on the command line, a parameter file that does not parse) stops with a
 // message naming the file and exit code 2; a bad file dropped on the window is reported and the current hair stays.
 #include "demo_app.hpp"
+#include "panel.hpp"
 #include "params.hpp"
 #include "presenter.hpp"
 #include "viewer_options.hpp"
@@ -33,7 +34,10 @@ demo::Options scene_options(const viewer::ViewerOptions& options, const std::str
   o.asset = file;
   o.width = width;
   o.height = height;
+  o.mesh = options.mesh;
+  o.mesh_scale = options.mesh_scale;
   o.params_file = options.params_file;
+  o.pass_timings = true;  // the panel shows the plugin's per-pass GPU times
   o.validation = options.validation;
   return o;
 }
@@ -86,6 +90,7 @@ int run(const viewer::ViewerOptions& options) {
   int code = viewer::kExitOk;
   {
     viewer::Presenter presenter(*device, width, height);
+    viewer::Panel panel(*device, window, presenter);
     std::string file = options.file;
     std::unique_ptr<demo::DemoApp> app = load(*device, scene_options(options, file, width, height));
     std::printf("hair: %s: %u strands\n", app->scene().asset_name.c_str(), app->asset_info().total_strands);
@@ -109,7 +114,8 @@ int run(const viewer::ViewerOptions& options) {
             return true;
           },
           [&](demo::FrameReport& frame) {
-            presenter.present(frame.pixels);
+            panel.build(*app, frame, window);
+            presenter.present(frame.pixels, [&](VkCommandBuffer cmd) { panel.record(cmd); });
             if (shown++ % 30 == 0) window.set_title(title(*app, &frame));
             last = std::move(frame.pixels);
           });
@@ -125,11 +131,12 @@ int run(const viewer::ViewerOptions& options) {
       try {
         app = load(*device, scene_options(options, next, width, height));
         file = next;
+        panel.message.clear();
         std::printf("hair: %s: %u strands\n", app->scene().asset_name.c_str(), app->asset_info().total_strands);
       } catch (const BadInput& e) {
         // A bad drop keeps the hair that was showing (its file loaded before, so it loads again).
         std::fprintf(stderr, "tressvk-viewer: error: %s\n", e.what());
-        window.set_title(std::string("tressvk-viewer: error: ") + e.what());
+        panel.message = e.what();
         app = load(*device, scene_options(options, file, width, height));
       }
     }

@@ -17,7 +17,6 @@ constexpr VkPipelineStageFlags2 kWriteStages = VK_PIPELINE_STAGE_2_CLEAR_BIT | V
 constexpr engine::ResourceState kAcquired{kWriteStages, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_UNDEFINED};
 // Cleared (the margin a smaller frame leaves) and copied to.
 constexpr engine::ResourceState kWritten{kWriteStages, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
-constexpr engine::ResourceState kPresent{VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR};
 
 VkSemaphore make_semaphore(VkDevice device) {
   VkSemaphoreCreateInfo ci{};
@@ -55,6 +54,7 @@ Presenter::~Presenter() {
   const VkDevice dev = device_.device();
   vkDeviceWaitIdle(dev);
   destroy_swapchain();
+  vkDestroyRenderPass(dev, render_pass_, nullptr);
   vkDestroySemaphore(dev, acquired_, nullptr);
   vkDestroyFence(dev, done_, nullptr);
   vkDestroyCommandPool(dev, pool_, nullptr);
@@ -97,7 +97,7 @@ void Presenter::create_swapchain() {
   ci.imageColorSpace = chosen.colorSpace;
   ci.imageExtent = extent_;
   ci.imageArrayLayers = 1;
-  ci.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  ci.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ci.preTransform = caps.currentTransform;
   ci.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
@@ -111,9 +111,75 @@ void Presenter::create_swapchain() {
   images_.resize(n);
   engine::vk_check(vkGetSwapchainImagesKHR(device_.device(), swapchain_, &n, images_.data()), "vkGetSwapchainImagesKHR");
   for (uint32_t i = 0; i < n; ++i) ready_to_present_.push_back(make_semaphore(device_.device()));
+
+  if (render_pass_ == VK_NULL_HANDLE) {
+    // The copied frame is loaded and the overlay drawn over it; the pass leaves the image ready to present.
+    VkAttachmentDescription color{};
+    color.format = format_;
+    color.samples = VK_SAMPLE_COUNT_1_BIT;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    color.initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    color.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &ref;
+    VkSubpassDependency deps[2]{};
+    deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;  // after the clear and copy
+    deps[0].dstSubpass = 0;
+    deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    deps[0].srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[1].srcSubpass = 0;  // before presentation (the semaphore signalled at ALL_COMMANDS follows it)
+    deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[1].dstStageMask = VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
+    deps[1].dstAccessMask = 0;
+    VkRenderPassCreateInfo rci{};
+    rci.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+    rci.attachmentCount = 1;
+    rci.pAttachments = &color;
+    rci.subpassCount = 1;
+    rci.pSubpasses = &subpass;
+    rci.dependencyCount = 2;
+    rci.pDependencies = deps;
+    engine::vk_check(vkCreateRenderPass(device_.device(), &rci, nullptr, &render_pass_), "vkCreateRenderPass");
+  }
+  for (VkImage image : images_) {
+    VkImageViewCreateInfo vci{};
+    vci.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+    vci.image = image;
+    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = format_;
+    vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    engine::vk_check(vkCreateImageView(device_.device(), &vci, nullptr, &view), "vkCreateImageView");
+    views_.push_back(view);
+    VkFramebufferCreateInfo fci{};
+    fci.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    fci.renderPass = render_pass_;
+    fci.attachmentCount = 1;
+    fci.pAttachments = &view;
+    fci.width = extent_.width;
+    fci.height = extent_.height;
+    fci.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    engine::vk_check(vkCreateFramebuffer(device_.device(), &fci, nullptr, &fb), "vkCreateFramebuffer");
+    framebuffers_.push_back(fb);
+  }
 }
 
 void Presenter::destroy_swapchain() {
+  for (VkFramebuffer fb : framebuffers_) vkDestroyFramebuffer(device_.device(), fb, nullptr);
+  for (VkImageView v : views_) vkDestroyImageView(device_.device(), v, nullptr);
+  framebuffers_.clear();
+  views_.clear();
   for (VkSemaphore s : ready_to_present_) vkDestroySemaphore(device_.device(), s, nullptr);
   ready_to_present_.clear();
   images_.clear();
@@ -121,7 +187,7 @@ void Presenter::destroy_swapchain() {
   swapchain_ = VK_NULL_HANDLE;
 }
 
-void Presenter::present(const engine::Pixels& pixels) {
+void Presenter::present(const engine::Pixels& pixels, const std::function<void(VkCommandBuffer)>& overlay) {
   const VkDevice dev = device_.device();
   if (pixels.texel_size != 4) throw engine::Error("the viewer presents 8-bit RGBA frames only");
   if (submitted_) {  // the previous copy: its command buffer, staging buffer and acquire semaphore are free after it
@@ -182,7 +248,16 @@ void Presenter::present(const engine::Pixels& pixels) {
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   copy.imageExtent = {w, h, 1};
   vkCmdCopyBufferToImage(cmd_, staging_.handle(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-  engine::cmd_image_barrier(cmd_, image, VK_IMAGE_ASPECT_COLOR_BIT, kWritten, kPresent);
+  // The render pass takes the image from TRANSFER_DST to PRESENT_SRC (its external dependency orders it after
+  // the copy), with the overlay drawn over the frame.
+  VkRenderPassBeginInfo rbi{};
+  rbi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+  rbi.renderPass = render_pass_;
+  rbi.framebuffer = framebuffers_[index];
+  rbi.renderArea.extent = extent_;
+  vkCmdBeginRenderPass(cmd_, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+  if (overlay) overlay(cmd_);
+  vkCmdEndRenderPass(cmd_);
   engine::vk_check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 
   VkSemaphoreSubmitInfo wait{};

@@ -10,6 +10,7 @@
 #include <volk.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace tressvk::viewer {
@@ -24,7 +25,12 @@ class Presenter {
   Presenter& operator=(const Presenter&) = delete;
 
   // Shows pixels (8-bit RGBA, sRGB-encoded) in the window; a smaller or larger swapchain gets the overlap.
-  void present(const engine::Pixels& pixels);
+  // overlay, if given, records draws (the ImGui panel) into render_pass() over the frame.
+  void present(const engine::Pixels& pixels, const std::function<void(VkCommandBuffer)>& overlay = {});
+
+  // The pass the overlay draws in: the swapchain image, loaded (the frame), then presented.
+  VkRenderPass render_pass() const { return render_pass_; }
+  uint32_t image_count() const { return static_cast<uint32_t>(images_.size()); }
 
  private:
   void create_swapchain();
@@ -37,6 +43,9 @@ class Presenter {
   bool bgra_ = false;  // swapchain stores B, G, R, A: swizzle while staging
   VkExtent2D extent_{};
   std::vector<VkImage> images_;
+  std::vector<VkImageView> views_;
+  std::vector<VkFramebuffer> framebuffers_;
+  VkRenderPass render_pass_ = VK_NULL_HANDLE;
   std::vector<VkSemaphore> ready_to_present_;  // one per swapchain image
   VkSemaphore acquired_ = VK_NULL_HANDLE;
   VkCommandPool pool_ = VK_NULL_HANDLE;

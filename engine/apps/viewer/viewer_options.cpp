@@ -12,6 +12,9 @@ int parse_viewer_options(int argc, char** argv, ViewerOptions& options) {
                                        "the bundled head and groom");
   app.add_option("--frames", options.frames, "Quit after this many frames (0: when the window closes)");
   app.add_option("--screenshot", options.screenshot, "Write the last frame to this PNG on exit");
+  app.add_option("--mesh", options.mesh, "An OBJ head or character mesh in the hair's space (as tressvk-demo --mesh)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--mesh-scale", options.mesh_scale, "OBJ units to metres for --mesh and OBJ hair curves");
   app.add_option("--params", options.params_file, "JSON parameter file (as tressvk-demo --params reads)");
   app.add_option("--width", options.width, "Window width in pixels")->check(CLI::Range(64u, 8192u));
   app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(64u, 8192u));

@@ -10,6 +10,8 @@ struct ViewerOptions {
   std::string file;        // .tvkhair, .tfx or OBJ hair curves; empty: the bundled head with its groom
   uint32_t frames = 0;     // quit after this many frames (0: run until the window closes)
   std::string screenshot;  // PNG: the last frame, written on exit
+  std::string mesh;        // OBJ head or character mesh (the demo's --mesh)
+  float mesh_scale = 1.0f; // OBJ units to metres (the demo's --mesh-scale)
   std::string params_file; // JSON parameter file (the demo's --params)
   uint32_t width = 960;
   uint32_t height = 540;

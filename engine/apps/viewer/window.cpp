@@ -80,6 +80,7 @@ bool Window::poll() {
 void Window::on_key(GLFWwindow* w, int key, int, int action, int) {
   if (action != GLFW_PRESS) return;
   Window& s = self(w);
+  if (s.ui_has_keyboard) return;
   switch (key) {
     case GLFW_KEY_SPACE: s.view.paused = !s.view.paused; break;
     case GLFW_KEY_R: s.reset_requested = true; break;
@@ -93,7 +94,7 @@ void Window::on_key(GLFWwindow* w, int key, int, int action, int) {
 void Window::on_button(GLFWwindow* w, int button, int action, int) {
   Window& s = self(w);
   if (button != GLFW_MOUSE_BUTTON_LEFT) return;
-  s.dragging_ = action == GLFW_PRESS;
+  s.dragging_ = action == GLFW_PRESS && !s.ui_has_mouse;
   glfwGetCursorPos(w, &s.last_x_, &s.last_y_);
 }
 
@@ -110,6 +111,7 @@ void Window::on_cursor(GLFWwindow* w, double x, double y) {
 
 void Window::on_scroll(GLFWwindow* w, double, double dy) {
   Window& s = self(w);
+  if (s.ui_has_mouse) return;
   s.view.zoom = std::clamp(s.view.zoom * (dy > 0 ? 0.9 : 1.0 / 0.9), 0.25, 4.0);
 }
 

@@ -27,6 +27,7 @@ class Window {
   VkSurfaceKHR create_surface(VkInstance instance) const;
   void framebuffer_size(uint32_t& width, uint32_t& height) const;
   void set_title(const std::string& title);
+  GLFWwindow* handle() const { return window_; }
 
   // Processes pending events; false once the window was asked to close.
   bool poll();
@@ -35,6 +36,8 @@ class Window {
   bool reset_requested = false;    // R: camera and animation back to the start
   bool save_requested = false;     // P: write the parameters in effect
   std::vector<std::string> dropped;  // paths dropped on the window, oldest first
+  bool ui_has_mouse = false;         // the panel is under the mouse: no orbit or zoom
+  bool ui_has_keyboard = false;      // the panel takes the keys (a text field): no shortcuts
 
  private:
   static void on_key(GLFWwindow* w, int key, int scancode, int action, int mods);
