@@ -129,9 +129,12 @@ void DemoApp::run_while(const std::function<bool()>& next_frame, const std::func
 
 void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const TvkContext ctx = plugin_.get();
+  // The clock counts the frames that were not paused: frame n of an unpaused run is at (n + 1) * frame_time
+  // exactly, as the golden images expect (a running sum of frame_time would drift in the last bits).
+  if (!view_.paused) ++clock_frames_;
   const double dt = view_.paused ? 0.0 : options_.frame_time;
-  time_ += dt;
-  const double t = time_;
+  const double t = static_cast<double>(clock_frames_) * options_.frame_time;
+  time_ = t;
 
   // ---- The frame's simulation input: head motion, colliders, wind.
   TvkSimFrame sim{};

@@ -92,6 +92,7 @@ class DemoApp {
   Params params_;
   ViewControl view_;
   double time_ = 0.0;
+  uint64_t clock_frames_ = 0;
 };
 
 }  // namespace tressvk::demo
