@@ -53,3 +53,26 @@ if(NOT rc EQUAL 2 OR NOT err MATCHES "broken.json")
   message(FATAL_ERROR "broken parameter file: expected exit 2 and a message naming it, got ${rc}\n--- stderr:\n${err}")
 endif()
 message("bad parameters: ${err}")
+
+# Raw TressFX curves, baked in memory by the viewer (skipped without the shared data), and a broken .tfx.
+set(tfx "${DATA_DIR}/tressfx/ratboy/Ratboy_mohawk.tfx")
+if(DATA_DIR AND EXISTS "${tfx}")
+  execute_process(COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24" "${VIEWER}" "${tfx}" --frames 2 --validation
+                          --width 320 --height 180
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${out}")
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "baked in memory" OR NOT out MATCHES "validation: 0 message\\(s\\)")
+    message(FATAL_ERROR "tressvk-viewer on ${tfx}: exit ${rc}, expected 0, the in-memory bake and no validation "
+                        "messages\n--- stderr:\n${err}")
+  endif()
+else()
+  message("SKIPPED: the .tfx run (${tfx} is absent; set TRESSVK_DATA_DIR to the shared data directory)")
+endif()
+set(broken_tfx "${OUT_DIR}/broken.tfx")
+file(WRITE "${broken_tfx}" "not a TressFX file")
+execute_process(COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24" "${VIEWER}" "${broken_tfx}" --frames 1
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "broken.tfx")
+  message(FATAL_ERROR "broken .tfx: expected exit 2 and a message naming it, got ${rc}\n--- stderr:\n${err}")
+endif()
+message("broken .tfx: ${err}")
