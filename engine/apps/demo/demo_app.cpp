@@ -1,6 +1,7 @@
 #include "demo_app.hpp"
 
 #include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/hair_readback.hpp>
 #include <tressvk/engine/sync.hpp>
 #include <tressvk/engine/timestamps.hpp>
 
@@ -83,6 +84,7 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
   for (uint32_t i = 0; i < kFramesInFlight; ++i)
     readback_.push_back(engine::create_buffer(device, VkDeviceSize{4} * options.width * options.height,
                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback));
+  if (options.step_error) probe_ = std::make_unique<StepErrorProbe>(scene_.asset_bytes, params_);
   strands_.assign(kFramesInFlight, 0);
   view_proj_.assign(kFramesInFlight, glm::dmat4(1.0));
 }
@@ -144,6 +146,21 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
   std::copy_n(scene_.capsules.begin(), sim.capsule_count, sim.capsules);
   sim.wind = wind_at(options_.animate, t, params_.wind);
+  if (probe_) {  // step error: the GPU state around one frame, compared with the reference's step
+    if (step_error_pending_) {
+      device_.wait_idle();
+      step_error_ = probe_->finish(engine::read_hair_state(device_, hair_->instance()));
+      step_error_pending_ = false;
+    }
+    if (step_error_requested_) {
+      device_.wait_idle();
+      probe_->start(sim, engine::read_hair_state(device_, hair_->instance()), params_);
+      step_error_requested_ = false;
+      step_error_pending_ = true;
+    } else {
+      probe_->track(sim);
+    }
+  }
   check_tvk(tressvk_set_frame(hair_->instance(), &sim), ctx, "tressvk_set_frame");
   check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
 

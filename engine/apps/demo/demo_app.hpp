@@ -10,6 +10,7 @@
 #include "plugin_host.hpp"
 #include "scene.hpp"
 #include "scene_renderer.hpp"
+#include "step_error.hpp"
 
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/device.hpp>
@@ -72,6 +73,11 @@ class DemoApp {
   void apply_params();
   // The plugin's per-pass GPU times of the newest complete frame (Options::pass_timings; empty without).
   std::vector<TvkPassTiming> pass_timings() const;
+  // Step error against the double reference (Options::step_error): measure the next frame (it waits for the
+  // device and runs the reference on the CPU: seconds, not per frame). The last result, relative to the median
+  // strand length; empty until one was measured.
+  void request_step_error() { step_error_requested_ = true; }
+  std::optional<double> step_error() const { return step_error_; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -93,6 +99,9 @@ class DemoApp {
   ViewControl view_;
   double time_ = 0.0;
   uint64_t clock_frames_ = 0;
+  std::unique_ptr<StepErrorProbe> probe_;
+  bool step_error_requested_ = false, step_error_pending_ = false;
+  std::optional<double> step_error_;
 };
 
 }  // namespace tressvk::demo

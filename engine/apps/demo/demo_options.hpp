@@ -46,7 +46,8 @@ struct Options {
   uint32_t guides = 1200;         // bundled groom: guides and follow hairs per guide
   uint32_t follows = 7;
   std::array<double, 3> world_offset{};  // m: where the scene sits in the world (precision far from the origin)
-  bool pass_timings = false;       // the plugin records per-pass GPU times (tressvk_get_pass_timings)
+  bool pass_timings = false;
+  bool step_error = false;         // keep a reference planner in step so DemoApp::request_step_error works       // the plugin records per-pass GPU times (tressvk_get_pass_timings)
   double frame_time = 1.0 / 60.0;  // s per frame (0 = the hair stays in its rest pose: renderer-only tests)
 };
 
