@@ -1,6 +1,6 @@
 # cmake -P script (see CMakeLists.txt): tressvk-viewer in a window under Xvfb (xvfb-run), on lavapipe with
-# validation and synchronization validation. Checks exit 0, "validation: 0 message(s)", and that the screenshot
-# shows hair (CHECK renders the same frame without hair and compares). Then the bad input: a missing file and a
+# validation and synchronization validation. Checks exit 0, "validation: 0 message(s)", the step error of one
+# frame against the double reference, and that the screenshot shows hair (CHECK renders the same frame without hair and compares). Then the bad input: a missing file and a
 # broken one give exit code 2 and a message naming the file, with no window needed to say so.
 foreach(var VIEWER CHECK XVFB_RUN OUT_DIR)
   if(NOT ${var})
@@ -13,7 +13,7 @@ set(frames 4)
 set(shot "${OUT_DIR}/viewer.png")
 # -a: a free display number (tests may run in parallel); 24-bit screen for an 8-bit BGRA swapchain.
 execute_process(COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24" "${VIEWER}" --frames ${frames} --validation
-                        --width 320 --height 180 --screenshot "${shot}"
+                        --width 320 --height 180 --screenshot "${shot}" --step-error
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}")
 if(NOT rc EQUAL 0)
@@ -24,6 +24,15 @@ if(NOT out MATCHES "validation: 0 message\\(s\\)")
 endif()
 if(NOT out MATCHES "frames: ${frames}\n")
   message(FATAL_ERROR "tressvk-viewer did not show ${frames} frames")
+endif()
+# The panel's step error, measured on one frame of the scene: the project's bar for one GPU frame against the
+# double reference is 1e-5 of the median strand length (tests/plugin/simulation_test.cpp).
+if(NOT out MATCHES "step error: ([0-9.eE+-]+) of the median strand length")
+  message(FATAL_ERROR "tressvk-viewer --step-error printed no step error")
+endif()
+set(step_error "${CMAKE_MATCH_1}")
+if(NOT step_error LESS_EQUAL 0.00001)
+  message(FATAL_ERROR "step error ${step_error} of the median strand length is above 1e-5")
 endif()
 execute_process(COMMAND "${CHECK}" "${shot}" ${frames} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}")

@@ -38,6 +38,7 @@ demo::Options scene_options(const viewer::ViewerOptions& options, const std::str
   o.mesh_scale = options.mesh_scale;
   o.params_file = options.params_file;
   o.pass_timings = true;  // the panel shows the plugin's per-pass GPU times
+  o.step_error = true;    // and the step error against the reference on request
   o.validation = options.validation;
   return o;
 }
@@ -110,6 +111,7 @@ int run(const viewer::ViewerOptions& options) {
             }
             if (window.reset_requested || !window.dropped.empty()) return reload = true, false;
             app->set_view(window.view);
+            if (options.step_error && options.frames >= 3 && submitted == options.frames / 2) app->request_step_error();
             ++submitted;
             return true;
           },
@@ -147,6 +149,8 @@ int run(const viewer::ViewerOptions& options) {
       std::printf("screenshot: %s\n", std::filesystem::absolute(options.screenshot).c_str());
     }
     std::printf("frames: %u\n", shown);
+    if (const auto e = app->step_error())
+      std::printf("step error: %.3g of the median strand length (one frame against the double reference)\n", *e);
   }
   device.reset();  // destruction is validated too
   if (options.validation) {

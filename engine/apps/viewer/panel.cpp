@@ -124,6 +124,23 @@ void Panel::build(demo::DemoApp& app, const demo::FrameReport& frame, Window& wi
     for (const TvkPassTiming& t : app.pass_timings())
       ImGui::Text("  %-24s %3u x  %.3f ms", t.name, t.dispatches, t.milliseconds);
   }
+  if (ImGui::CollapsingHeader("Accuracy", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // One frame against the double-precision reference (as tressvk-bench compare): seconds on the CPU, so on
+    // request, or every 120 frames with the box ticked.
+    static bool every = false;
+    static uint32_t frames_since = 0;
+    if (ImGui::Button("Measure step error")) app.request_step_error();
+    ImGui::SameLine();
+    ImGui::Checkbox("every 120 frames", &every);
+    if (every && ++frames_since >= 120) {
+      app.request_step_error();
+      frames_since = 0;
+    }
+    if (const auto e = app.step_error())
+      ImGui::Text("step error: %.3g %% of the median strand length", 100.0 * *e);
+    else
+      ImGui::TextDisabled("step error: not measured yet");
+  }
   if (ImGui::CollapsingHeader("Parameter file", ImGuiTreeNodeFlags_DefaultOpen)) {
     static char path[512] = "";
     if (path[0] == '\0') std::snprintf(path, sizeof(path), "%s", params_path.c_str());

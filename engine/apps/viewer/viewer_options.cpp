@@ -19,6 +19,8 @@ int parse_viewer_options(int argc, char** argv, ViewerOptions& options) {
   app.add_option("--width", options.width, "Window width in pixels")->check(CLI::Range(64u, 8192u));
   app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(64u, 8192u));
   app.add_option("--device", options.device, "Vulkan device: index or name substring");
+  app.add_flag("--step-error", options.step_error,
+               "With --frames: measure one frame's step error against the double reference and print it");
   app.add_flag("--validation", options.validation,
                "Enable the Vulkan validation layer with synchronization validation; any message fails the run");
   try {

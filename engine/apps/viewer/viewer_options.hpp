@@ -17,6 +17,7 @@ struct ViewerOptions {
   uint32_t height = 540;
   std::string device;
   bool validation = false;
+  bool step_error = false;  // with --frames: measure the step error of the middle frame and print it
 };
 
 // Exit codes, also in --help.
