@@ -2,8 +2,9 @@
 # Installs what TressVK needs to build and test on Debian 12 (bookworm), and only what is missing.
 #
 #   - bookworm packages: compiler, CMake, Ninja, Vulkan headers/loader/tools/validation layers, glslang,
-#     SPIRV-Tools, volk, glm, tinyobjloader, stb, CLI11, nlohmann-json, ffmpeg (tressvk-demo --video); clang 14
-#     with libFuzzer and the LLVM tools (llvm-symbolizer for readable sanitizer reports) for the fuzz targets
+#     SPIRV-Tools, volk, glm, tinyobjloader, stb, CLI11, nlohmann-json, ffmpeg (tressvk-demo --video), GLFW and
+#     Dear ImGui (tressvk-viewer), xvfb + xauth (xvfb-run: the viewer's test without a screen); clang 14 with
+#     libFuzzer and the LLVM tools (llvm-symbolizer for readable sanitizer reports) for the fuzz targets
 #     (scripts/fuzz.sh);
 #   - bookworm-backports, selected per package: catch2 (v3) and mesa-vulkan-drivers (lavapipe);
 #   - the VulkanMemoryAllocator header package from trixie, unpacked with `dpkg -x` into a project-local,
@@ -27,7 +28,8 @@ export DEBIAN_FRONTEND=noninteractive
 
 BOOKWORM_PKGS=(build-essential cmake ninja-build pkg-config libvulkan-dev vulkan-tools vulkan-validationlayers
   glslang-tools spirv-tools libvulkan-volk-dev libglm-dev libtinyobjloader-dev libstb-dev libcli11-dev
-  nlohmann-json3-dev ca-certificates ffmpeg clang-14 libclang-rt-14-dev libfuzzer-14-dev llvm-14)
+  nlohmann-json3-dev ca-certificates ffmpeg libglfw3-dev libimgui-dev xvfb xauth
+  clang-14 libclang-rt-14-dev libfuzzer-14-dev llvm-14)
 BACKPORT_PKGS=(catch2 mesa-vulkan-drivers)
 
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q '^install ok installed$'; }

@@ -122,6 +122,10 @@ Device::Device(const DeviceOptions& options) : log_(std::make_shared<MessageLog>
   log_->set_print(options.print_messages);
   try {
     create_instance(options);
+    if (options.create_surface) {
+      surface_ = options.create_surface(instance_);
+      if (surface_ == VK_NULL_HANDLE) throw Error("the window system could not create a Vulkan surface for the window");
+    }
     pick_physical_device(options);
     create_device();
     create_allocator();
@@ -138,12 +142,14 @@ void Device::release() {
   if (command_pool_) vkDestroyCommandPool(device_, command_pool_, nullptr);
   if (allocator_) vmaDestroyAllocator(allocator_);
   if (device_) vkDestroyDevice(device_, nullptr);
+  if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
   if (messenger_) vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
   if (instance_) vkDestroyInstance(instance_, nullptr);
   command_pool_ = VK_NULL_HANDLE;
   allocator_ = VK_NULL_HANDLE;
   device_ = VK_NULL_HANDLE;
   messenger_ = VK_NULL_HANDLE;
+  surface_ = VK_NULL_HANDLE;
   instance_ = VK_NULL_HANDLE;
 }
 
@@ -182,6 +188,12 @@ void Device::create_instance(const DeviceOptions& options) {
   } else if (has_extension(available, VK_EXT_DEBUG_UTILS_EXTENSION_NAME)) {
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);  // object names for debuggers and captures
     debug_utils_ = true;
+  }
+
+  for (const std::string& e : options.instance_extensions) {
+    if (!has_extension(available, e.c_str()))
+      throw Error("the window system needs the instance extension " + e + ", which the Vulkan loader does not offer");
+    extensions.push_back(e.c_str());
   }
 
   VkApplicationInfo app{};
@@ -275,6 +287,11 @@ void Device::create_device() {
       missing += missing.empty() ? req.extensions[i] : std::string(", ") + req.extensions[i];
     extensions.push_back(req.extensions[i]);
   }
+  if (surface_ != VK_NULL_HANDLE) {
+    if (!has_extension(device_ext, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+      missing += missing.empty() ? VK_KHR_SWAPCHAIN_EXTENSION_NAME : ", " VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  }
   if (!missing.empty())
     throw Error(std::string("device '") + name() + "' lacks what TressVK needs: " + missing);
 
@@ -286,13 +303,19 @@ void Device::create_device() {
   bool found = false;
   for (uint32_t i = 0; i < n_fam && !found; ++i) {
     const VkQueueFlags f = families[i].queueFlags;
-    if ((f & VK_QUEUE_GRAPHICS_BIT) && (f & VK_QUEUE_COMPUTE_BIT)) {
+    VkBool32 present = VK_TRUE;
+    if (surface_ != VK_NULL_HANDLE)
+      vk_check(vkGetPhysicalDeviceSurfaceSupportKHR(physical_device_, i, surface_, &present),
+               "vkGetPhysicalDeviceSurfaceSupportKHR");
+    if ((f & VK_QUEUE_GRAPHICS_BIT) && (f & VK_QUEUE_COMPUTE_BIT) && present) {
       queue_family_ = i;
       timestamp_valid_bits_ = families[i].timestampValidBits;
       found = true;
     }
   }
-  if (!found) throw Error(std::string("device '") + name() + "' has no queue family with graphics and compute");
+  if (!found)
+    throw Error(std::string("device '") + name() + "' has no queue family with graphics and compute" +
+                (surface_ != VK_NULL_HANDLE ? " that can present to the window" : ""));
 
   // Enabled features: what TressVK and the engine need, plus a few optional ones where present that the
   // renderer uses (depth clamp for shadow maps, anisotropic sampling, wireframe debugging).

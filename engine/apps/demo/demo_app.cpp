@@ -1,6 +1,7 @@
 #include "demo_app.hpp"
 
 #include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/hair_readback.hpp>
 #include <tressvk/engine/sync.hpp>
 #include <tressvk/engine/timestamps.hpp>
 
@@ -65,7 +66,7 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
       flavour_(flavour),
       scene_(build_scene(options)),
       target_(engine::create_offscreen_target(device, options.width, options.height, kColorFormat, kDepthFormat)),
-      plugin_(device, kFramesInFlight, options.pass_timestamps) {
+      plugin_(device, kFramesInFlight, options.pass_timestamps || options.pass_timings) {
   if (flavour_ == PassFlavour::render_pass) {
     render_pass_ = engine::RenderPassTarget(device, target_);
     render_pass_load_ = engine::RenderPassTarget(device, target_, /*load=*/true);
@@ -103,13 +104,33 @@ DemoApp::DemoApp(engine::Device& device, const Options& options, PassFlavour fla
   for (uint32_t i = 0; i < kFramesInFlight; ++i)
     readback_.push_back(engine::create_buffer(device, VkDeviceSize{4} * options.width * options.height,
                                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback));
+  if (options.step_error) probe_ = std::make_unique<StepErrorProbe>(scene_.asset_bytes, params_);
   strands_.assign(kFramesInFlight, 0);
   view_proj_.assign(kFramesInFlight, glm::dmat4(1.0));
 }
 
 DemoApp::~DemoApp() { device_.wait_idle(); }
 
+void DemoApp::apply_params() {
+  const TvkContext ctx = plugin_.get();
+  for (uint32_t g = 0; g < hair_->info().group_count; ++g)
+    check_tvk(tressvk_set_sim_params(hair_->instance(), g, &params_.simulation), ctx, "tressvk_set_sim_params");
+  check_tvk(tressvk_set_sim_settings(hair_->instance(), &params_.settings), ctx, "tressvk_set_sim_settings");
+  material_ = params_.material;
+}
+
+std::vector<TvkPassTiming> DemoApp::pass_timings() const {
+  std::vector<TvkPassTiming> t(32);
+  t.resize(tressvk_get_pass_timings(plugin_.get(), t.data(), static_cast<uint32_t>(t.size())));
+  return t;
+}
+
 void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_frame) {
+  uint32_t f = 0;
+  run_while([&] { return f++ < frames; }, on_frame);
+}
+
+void DemoApp::run_while(const std::function<bool()>& next_frame, const std::function<void(FrameReport&)>& on_frame) {
   engine::FrameLoop loop(device_, kFramesInFlight, kTimestamps, [&](const engine::FrameLoop::Frame& done) {
     FrameReport report;
     report.index = static_cast<uint32_t>(done.number);
@@ -123,7 +144,7 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
     report.view_proj = view_proj_[done.slot];
     on_frame(report);
   });
-  for (uint32_t f = 0; f < frames; ++f) {
+  while (next_frame()) {
     record(loop.begin());
     loop.end();
   }
@@ -132,16 +153,36 @@ void DemoApp::run(uint32_t frames, const std::function<void(FrameReport&)>& on_f
 
 void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const TvkContext ctx = plugin_.get();
-  const double t = static_cast<double>(frame.number + 1) * options_.frame_time;
+  // The clock counts the frames that were not paused: frame n of an unpaused run is at (n + 1) * frame_time
+  // exactly, as the golden images expect (a running sum of frame_time would drift in the last bits).
+  if (!view_.paused) ++clock_frames_;
+  const double dt = view_.paused ? 0.0 : options_.frame_time;
+  const double t = static_cast<double>(clock_frames_) * options_.frame_time;
+  time_ = t;
 
   // ---- The frame's simulation input: head motion, colliders, wind.
   TvkSimFrame sim{};
-  sim.dt = static_cast<float>(options_.frame_time);
+  sim.dt = static_cast<float>(dt);
   sim.transform = animate(options_.animate, t);
   for (int i = 0; i < 3; ++i) sim.transform.translation[i] += options_.world_offset[i];
   sim.capsule_count = static_cast<uint32_t>(std::min<size_t>(scene_.capsules.size(), TVK_MAX_CAPSULES));
   std::copy_n(scene_.capsules.begin(), sim.capsule_count, sim.capsules);
   sim.wind = wind_at(options_.animate, t, params_.wind);
+  if (probe_) {  // step error: the GPU state around one frame, compared with the reference's step
+    if (step_error_pending_) {
+      device_.wait_idle();
+      step_error_ = probe_->finish(engine::read_hair_state(device_, hair_->instance()));
+      step_error_pending_ = false;
+    }
+    if (step_error_requested_) {
+      device_.wait_idle();
+      probe_->start(sim, engine::read_hair_state(device_, hair_->instance()), params_);
+      step_error_requested_ = false;
+      step_error_pending_ = true;
+    } else {
+      probe_->track(sim);
+    }
+  }
   check_tvk(tressvk_set_frame(hair_->instance(), &sim), ctx, "tressvk_set_frame");
   check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
   if (options_.pass_timestamps) {
@@ -155,12 +196,17 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const glm::dvec3 center = glm::dvec3(model * glm::dvec4(scene_.center[0], scene_.center[1], scene_.center[2], 1.0));
   const double fov = glm::radians(30.0);
   const double aspect = static_cast<double>(options_.width) / options_.height;
-  const double distance = options_.camera_distance > 0.0f
-                              ? double{options_.camera_distance}
-                              : 0.9 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect));
-  const glm::dvec3 eye =
-      center + glm::normalize(glm::dvec3(scene_.view_direction[0], scene_.view_direction[1], scene_.view_direction[2])) *
-                   distance;
+  const double distance = view_.zoom * (options_.camera_distance > 0.0f
+                                            ? double{options_.camera_distance}
+                                            : 0.9 * scene_.radius / std::sin(0.5 * fov * std::min(1.0, aspect)));
+  glm::dvec3 dir =
+      glm::normalize(glm::dvec3(scene_.view_direction[0], scene_.view_direction[1], scene_.view_direction[2]));
+  if (view_.yaw != 0.0 || view_.pitch != 0.0) {  // orbit: yaw about +y, then pitch, clamped short of the poles
+    const double yaw = std::atan2(dir.x, dir.z) + view_.yaw;
+    const double pitch = std::clamp(std::asin(std::clamp(dir.y, -1.0, 1.0)) + view_.pitch, -1.45, 1.45);
+    dir = glm::dvec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+  }
+  const glm::dvec3 eye = center + dir * distance;
   glm::dmat4 proj = glm::perspectiveRH_ZO(fov, aspect, 0.02 * distance, 10.0 * distance + 4.0 * scene_.radius);
   proj[1][1] *= -1.0;  // Vulkan clip space: +y is down
   SceneFrame sf;

@@ -12,6 +12,7 @@
 #include "plugin_host.hpp"
 #include "scene.hpp"
 #include "scene_renderer.hpp"
+#include "step_error.hpp"
 
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/device.hpp>
@@ -38,6 +39,15 @@ struct FrameReport {
   glm::dmat4 view_proj{1.0};  // the camera's world -> clip transform of this frame (Vulkan clip space)
 };
 
+// What an interactive host changes between frames (tressvk-viewer): an orbit around the framed centre, a zoom
+// factor on the framing distance, and a pause that holds the animation clock (the hair then settles in place).
+struct ViewControl {
+  double yaw = 0.0;    // radians about world +y, added to the scene's view direction
+  double pitch = 0.0;  // radians up (+) or down, clamped short of the poles
+  double zoom = 1.0;   // multiplies the camera distance
+  bool paused = false;
+};
+
 enum class PassFlavour { dynamic_rendering, render_pass };
 
 class DemoApp {
@@ -50,6 +60,12 @@ class DemoApp {
 
   // Renders `frames` frames; on_frame gets each finished frame in order.
   void run(uint32_t frames, const std::function<void(FrameReport&)>& on_frame);
+  // Renders frames while next_frame() says so (a windowed host polls its events there).
+  void run_while(const std::function<bool()>& next_frame, const std::function<void(FrameReport&)>& on_frame);
+
+  void set_view(const ViewControl& view) { view_ = view; }
+  const ViewControl& view() const { return view_; }
+  double time() const { return time_; }  // s of animation shown
 
   const Scene& scene() const { return scene_; }
   TvkContext plugin() const { return plugin_.get(); }
@@ -62,6 +78,17 @@ class DemoApp {
   // With Options::pass_timestamps: the plugin's per-pass GPU times of the frames completed so far, per pass name
   // (collected when each frame is recorded, for the frame the plugin's promise says is complete).
   std::map<std::string, std::vector<double>>& pass_ms() { return pass_ms_; }
+  // Live tuning (the viewer's panel): edit tuning(), then apply_params() hands simulation, settings and material
+  // to the plugin; wind and LOD are read every frame.
+  Params& tuning() { return params_; }
+  void apply_params();
+  // The plugin's per-pass GPU times of the newest complete frame (Options::pass_timings; empty without).
+  std::vector<TvkPassTiming> pass_timings() const;
+  // Step error against the double reference (Options::step_error): measure the next frame (it waits for the
+  // device and runs the reference on the CPU: seconds, not per frame). The last result, relative to the median
+  // strand length; empty until one was measured.
+  void request_step_error() { step_error_requested_ = true; }
+  std::optional<double> step_error() const { return step_error_; }
 
  private:
   void record(const engine::FrameLoop::Frame& frame);
@@ -82,6 +109,12 @@ class DemoApp {
   std::map<std::string, std::vector<double>> pass_ms_;
   TvkHairMaterial material_{};
   Params params_;
+  ViewControl view_;
+  double time_ = 0.0;
+  uint64_t clock_frames_ = 0;
+  std::unique_ptr<StepErrorProbe> probe_;
+  bool step_error_requested_ = false, step_error_pending_ = false;
+  std::optional<double> step_error_;
 };
 
 }  // namespace tressvk::demo

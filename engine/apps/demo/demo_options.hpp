@@ -41,7 +41,8 @@ struct Options {
   Animation animate = Animation::showcase;
   float wind = 0.0f;   // m/s^2
   bool shadows = true;
-  bool pass_timestamps = false;  // the plugin times each of its passes (tressvk_get_pass_timings)
+  bool pass_timestamps = false;  // the plugin times each of its passes and DemoApp::pass_ms() collects every frame's
+                                 // (tressvk-bench render)
   HairPath hair_path = HairPath::compute;  // --path
   uint32_t raster_flags = 0;               // tests: TVK_RASTER_* flags of the compute path (capture, reverse)
   // Not on the command line of the default run, but used by tests and docs:
@@ -52,6 +53,8 @@ struct Options {
   uint32_t guides = 1200;         // bundled groom: guides and follow hairs per guide
   uint32_t follows = 7;
   std::array<double, 3> world_offset{};  // m: where the scene sits in the world (precision far from the origin)
+  bool pass_timings = false;       // the plugin records per-pass GPU times; DemoApp::pass_timings() reads the newest
+  bool step_error = false;         // keep a reference planner in step so DemoApp::request_step_error works
   double frame_time = 1.0 / 60.0;  // s per frame (0 = the hair stays in its rest pose: renderer-only tests)
 };
 

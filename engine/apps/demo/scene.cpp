@@ -3,17 +3,27 @@
 #include "head.hpp"
 
 #include <tressvk/asset_io.hpp>
+#include <tressvk/baker/bake.hpp>
 #include <tressvk/baker/groom.hpp>
 #include <tressvk/baker/import.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/check.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <string>
 
 namespace tressvk::demo {
 
 namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -95,6 +105,15 @@ Scene build_scene(const Options& options) {
     scene.asset_name = "bundled long128 groom (" + std::to_string(groom.guide_count) + " guides x " +
                        std::to_string(1 + groom.follow_per_guide) + ")";
     scene.asset_bytes = asset::write(hair);
+  } else if (const std::string ext = lower_extension(options.asset); ext == ".tfx" || ext == ".obj") {
+    // Raw curves (TressFX .tfx, OBJ line elements): baked in memory with the baker's defaults and K = 3 follow
+    // hairs, so a groom can be looked at before choosing bake options (tressvk-bake for the asset to ship).
+    baker::BakeOptions bake{};
+    bake.follow_per_guide = 3;
+    bake.units_to_metres = options.mesh_scale;
+    hair = baker::bake(baker::import_file(options.asset), bake);
+    scene.asset_bytes = asset::write(hair);
+    scene.asset_name = options.asset + " (baked in memory)";
   } else {
     scene.asset_bytes = baker::read_binary_file(options.asset);
     asset::ReadResult r = asset::read(scene.asset_bytes);

@@ -26,6 +26,12 @@ struct DeviceOptions {
   bool validation = false;       // enable VK_LAYER_KHRONOS_validation (an error if it is not installed)
   bool sync_validation = false;  // also synchronization validation (implies validation)
   bool print_messages = true;    // print validation messages to stderr as they arrive
+  // Windowed hosts (tressvk-viewer): the window system's instance extensions (e.g. from
+  // glfwGetRequiredInstanceExtensions) and a function that makes the window's surface once the instance exists.
+  // With create_surface set the Device owns the surface, enables VK_KHR_swapchain and picks a queue family that
+  // can also present to it. Left empty (the default) the device stays headless: no surface, no swapchain.
+  std::vector<std::string> instance_extensions;
+  std::function<VkSurfaceKHR(VkInstance)> create_surface;
 };
 
 // A device as listed by list_devices().
@@ -51,7 +57,8 @@ class Device {
   VkInstance instance() const { return instance_; }
   VkPhysicalDevice physical_device() const { return physical_device_; }
   VkDevice device() const { return device_; }
-  VkQueue queue() const { return queue_; }
+  VkQueue queue() const { return queue_; }  // graphics + compute (+ present on a windowed device)
+  VkSurfaceKHR surface() const { return surface_; }  // VK_NULL_HANDLE on a headless device
   uint32_t queue_family() const { return queue_family_; }
   VmaAllocator allocator() const { return allocator_; }
   uint32_t api_version() const { return api_version_; }  // what the instance and device were created for
@@ -100,6 +107,7 @@ class Device {
   uint32_t api_version_ = VK_API_VERSION_1_3;
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties_{};
   VkDevice device_ = VK_NULL_HANDLE;
