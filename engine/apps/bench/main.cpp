@@ -4,6 +4,7 @@
 //   tressvk-bench compare --builtin curly --scene shake --frames 300 --json out.json
 //   tressvk-bench compare --asset mohawk.tvkhair --scene run
 #include "bench.hpp"
+#include "params.hpp"
 #include "render_bench.hpp"
 #include "run_bench.hpp"
 #include "soak_bench.hpp"
@@ -117,6 +118,11 @@ int main(int argc, char** argv) {
   compare->add_option("--step-rate", o.settings.time.step_rate, "simulation steps per second")->capture_default_str();
   compare->add_option("--local-iterations", o.params.local_iterations)->capture_default_str();
   compare->add_option("--length-iterations", o.params.length_iterations)->capture_default_str();
+  std::string params_path;
+  compare->add_option("--params", params_path,
+                      "JSON parameter file (tressvk-demo --save-params, the viewer's Save): its simulation parameters "
+                      "and settings; --step-rate and the iteration options given here override it")
+      ->check(CLI::ExistingFile);
   compare->add_option("--json", json_path, "write the results as JSON");
   compare->add_option("--device", device, "device index or name substring (default: discrete GPU first)");
   bool table_row = false;
@@ -141,6 +147,20 @@ int main(int argc, char** argv) {
   }
 
   o.trajectory = !no_trajectory;
+  if (!params_path.empty()) {
+    try {
+      const demo::Params file = demo::load_params(params_path);
+      const bench::CompareOptions given = o;
+      o.params = file.simulation;
+      o.settings = file.settings;
+      if (compare->count("--step-rate")) o.settings.time.step_rate = given.settings.time.step_rate;
+      if (compare->count("--local-iterations")) o.params.local_iterations = given.params.local_iterations;
+      if (compare->count("--length-iterations")) o.params.length_iterations = given.params.length_iterations;
+    } catch (const demo::ParamsError& e) {
+      std::fprintf(stderr, "tressvk-bench: %s\n", e.what());
+      return 1;
+    }
+  }
   try {
     const auto names = reference::scene_names();
     if (std::find(names.begin(), names.end(), o.scene) == names.end()) {
