@@ -57,7 +57,7 @@ row sample-compute-1080p --sample sphere $HD $TIMED --png "$OUT/sample-compute-1
 # The bundled head sample (the demo's default scene: face, straight groom, head turn).
 row head-compute-1080p --sample head $HD $TIMED --png "$OUT/head-compute-1080p.png"
 [ -n "$RATBOY" ] && row ratboy4-compute-1080p --asset "$RATBOY" $HD $TIMED --animate shake --png "$OUT/ratboy4-compute-1080p.png"
-row 100k-compute-1080p --guides 12500 --follows 7 --vertices 32 $HD $TIMED
+row 100k-compute-1080p --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED
 [ "${QUICK:-0}" = 1 ] && exit 0
 
 # The raster path on the same frames (speed only: it has no capture for the reference).
@@ -71,5 +71,5 @@ row sample-compute-540p --sample sphere --width 960 --height 540 $TIMED
 row sample-compute-2160p --sample sphere --width 3840 --height 2160 $TIMED
 row sample-compute-1080p-lod50 --sample sphere $HD $TIMED --lod-fraction 0.5
 row sample-compute-1080p-lod25 --sample sphere $HD $TIMED --lod-fraction 0.25
-row 100k-compute-1080p-lod25 --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25
-row 100k-compute-2160p --guides 12500 --follows 7 --vertices 32 --width 3840 --height 2160 $TIMED
+row 100k-compute-1080p-lod25 --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25
+row 100k-compute-2160p --sample sphere --guides 12500 --follows 7 --vertices 32 --width 3840 --height 2160 $TIMED
