@@ -11,21 +11,6 @@ namespace tressvk::render::compute {
 
 namespace {
 
-void memory_barrier(Context& ctx, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
-  VkMemoryBarrier2 b{};
-  b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-  b.srcStageMask = src_stage;
-  b.srcAccessMask = src_access;
-  b.dstStageMask = dst_stage;
-  b.dstAccessMask = dst_access;
-  VkDependencyInfo di{};
-  di.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-  di.memoryBarrierCount = 1;
-  di.pMemoryBarriers = &b;
-  ctx.vk.vkCmdPipelineBarrier2(cmd, &di);
-}
-
 constexpr VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
 constexpr VkAccessFlags2 kStorageRW = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
 

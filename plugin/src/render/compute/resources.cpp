@@ -372,4 +372,20 @@ void destroy(TvkRenderer_T& r) {
   r.compute = nullptr;
 }
 
+// One global memory barrier (the compute passes order their own buffers with it).
+void memory_barrier(Context& ctx, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+  VkMemoryBarrier2 b{};
+  b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+  b.srcStageMask = src_stage;
+  b.srcAccessMask = src_access;
+  b.dstStageMask = dst_stage;
+  b.dstAccessMask = dst_access;
+  VkDependencyInfo di{};
+  di.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+  di.memoryBarrierCount = 1;
+  di.pMemoryBarriers = &b;
+  ctx.vk.vkCmdPipelineBarrier2(cmd, &di);
+}
+
 }  // namespace tressvk::render::compute

@@ -11,21 +11,6 @@ namespace tressvk::render::compute {
 
 namespace {
 
-void barrier(Context& ctx, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-             VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
-  VkMemoryBarrier2 b{};
-  b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-  b.srcStageMask = src_stage;
-  b.srcAccessMask = src_access;
-  b.dstStageMask = dst_stage;
-  b.dstAccessMask = dst_access;
-  VkDependencyInfo di{};
-  di.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-  di.memoryBarrierCount = 1;
-  di.pMemoryBarriers = &b;
-  ctx.vk.vkCmdPipelineBarrier2(cmd, &di);
-}
-
 TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRasterInfo* info) {
   Context& ctx = *r.ctx;
   const char* fn = "tressvk_cmd_shadow_hair";
@@ -89,7 +74,7 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
   region.imageExtent = {width, height, 1};
   // The previous frame's copies used the buffer; then the map into it, the hair on top, and back.
   const uint32_t timed = ctx.time_begin(cmd);  // the whole call: copy out, hair depth, copy back
-  barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+  memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   ctx.vk.vkCmdCopyImageToBuffer(cmd, info->shadow_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, s.shadow_depth.buffer,
                                 1, &region);
@@ -110,14 +95,14 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &ib;
   ctx.vk.vkCmdPipelineBarrier2(cmd, &dep);
-  barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+  memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   ctx.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.shadow);
   ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.shadow_layout, 0, 1, &set, 0, nullptr);
   ctx.vk.vkCmdPushConstants(cmd, s.shadow_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   ctx.vk.vkCmdDispatch(cmd, std::max<uint32_t>(1, static_cast<uint32_t>((segments + 63) / 64)), 1, 1);
-  barrier(ctx, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+  memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
   ctx.vk.vkCmdCopyBufferToImage(cmd, s.shadow_depth.buffer, info->shadow_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                 1, &region);

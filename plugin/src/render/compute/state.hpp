@@ -65,5 +65,8 @@ TvkResult grow(Context& ctx, GpuBuffer& buffer, VkDeviceSize size, VkBufferUsage
 TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint64_t vertices, uint64_t segments,
                          bool capture);
 uint64_t memory_bytes(const State& s);
+// Records one VkMemoryBarrier2 from (src_stage, src_access) to (dst_stage, dst_access).
+void memory_barrier(Context& ctx, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
 
 }  // namespace tressvk::render::compute
