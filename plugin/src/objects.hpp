@@ -5,12 +5,12 @@
 #include "context.hpp"
 #include "gpu.hpp"
 #include "hazards.hpp"
-#include "sim/gpu_layout.hpp"
+#include "tressvk/model/gpu_layout.hpp"
 #include "sim/passes.hpp"
 
 #include <tressvk/asset.hpp>
-#include <tressvk/reference/model.hpp>
-#include <tressvk/reference/planner.hpp>
+#include <tressvk/model/model.hpp>
+#include <tressvk/model/planner.hpp>
 
 #include <array>
 #include <memory>

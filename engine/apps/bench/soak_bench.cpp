@@ -13,7 +13,7 @@
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/hair_readback.hpp>
 #include <tressvk/reference/metrics.hpp>
-#include <tressvk/reference/model.hpp>
+#include <tressvk/model/model.hpp>
 #include <tressvk/reference/scenes.hpp>
 
 #include <nlohmann/json.hpp>

@@ -14,7 +14,7 @@
 
 #include "tressvk/sim_types.h"
 
-#include "gpu_layout.hpp"
+#include "tressvk/model/gpu_layout.hpp"
 
 namespace tressvk::sim {
 

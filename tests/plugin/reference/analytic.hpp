@@ -17,7 +17,7 @@
 
 #include <tressvk/asset.hpp>
 #include <tressvk/baker/bake.hpp>
-#include <tressvk/reference/math.hpp>
+#include <tressvk/model/math.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>
 #include <tressvk/reference/simulator.hpp>

@@ -7,9 +7,9 @@
 #include <span>
 #include <vector>
 
-#include "sim/gpu_layout.hpp"
-#include "tressvk/reference/math.hpp"
-#include "tressvk/reference/model.hpp"
+#include "tressvk/model/gpu_layout.hpp"
+#include "tressvk/model/math.hpp"
+#include "tressvk/model/model.hpp"
 
 namespace tressvk::reference {
 

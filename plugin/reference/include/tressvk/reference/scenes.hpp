@@ -17,8 +17,8 @@
 #include <string_view>
 #include <vector>
 
-#include "tressvk/reference/math.hpp"
-#include "tressvk/reference/model.hpp"
+#include "tressvk/model/math.hpp"
+#include "tressvk/model/model.hpp"
 #include "tressvk/sim_types.h"
 
 namespace tressvk::reference {

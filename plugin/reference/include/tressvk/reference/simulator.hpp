@@ -14,8 +14,8 @@
 
 #include <tressvk/asset.hpp>
 
-#include "tressvk/reference/model.hpp"
-#include "tressvk/reference/planner.hpp"
+#include "tressvk/model/model.hpp"
+#include "tressvk/model/planner.hpp"
 #include "tressvk/sim_types.h"
 
 namespace tressvk::reference {

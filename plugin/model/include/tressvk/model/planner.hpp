@@ -20,8 +20,8 @@
 #include <span>
 #include <vector>
 
-#include "sim/gpu_layout.hpp"
-#include "tressvk/reference/math.hpp"
+#include "tressvk/model/gpu_layout.hpp"
+#include "tressvk/model/math.hpp"
 #include "tressvk/sim_types.h"
 
 namespace tressvk::reference {

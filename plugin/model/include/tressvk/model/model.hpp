@@ -12,8 +12,8 @@
 
 #include <tressvk/asset.hpp>
 
-#include "sim/gpu_layout.hpp"
-#include "tressvk/reference/math.hpp"
+#include "tressvk/model/gpu_layout.hpp"
+#include "tressvk/model/math.hpp"
 
 namespace tressvk::reference {
 

@@ -1,4 +1,4 @@
-#include "tressvk/reference/model.hpp"
+#include "tressvk/model/model.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "tressvk/reference/math.hpp"
+#include "tressvk/model/math.hpp"
 
 namespace tressvk::reference {
 

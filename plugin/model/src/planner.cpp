@@ -1,4 +1,4 @@
-#include "tressvk/reference/planner.hpp"
+#include "tressvk/model/planner.hpp"
 
 #include <cmath>
 #include <numbers>
