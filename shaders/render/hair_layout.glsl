@@ -1,5 +1,5 @@
 // Shared by the hair shadow and shading passes: the per-draw constants (one block of the renderer's ring) and the
-// simulation's storage buffers. Must match DrawConstants in plugin/src/render_constants.hpp.
+// simulation's storage buffers. Must match DrawConstants in plugin/src/render/constants.hpp.
 #extension GL_EXT_control_flow_attributes : enable
 
 struct Light {

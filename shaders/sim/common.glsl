@@ -1,5 +1,5 @@
 // Math shared by the simulation passes. Each function has a double-precision twin in
-// plugin/reference/include/tressvk/reference/math.hpp (constants in model.hpp) written in the same order of
+// plugin/model/include/tressvk/model/math.hpp (constants in model.hpp) written in the same order of
 // operations, so the GPU and the reference differ only by float32 rounding.
 #ifndef TRESSVK_SIM_COMMON_GLSL
 #define TRESSVK_SIM_COMMON_GLSL

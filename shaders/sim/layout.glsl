@@ -1,5 +1,5 @@
 // GPU data layout of the TressVK simulation: every simulation shader includes this file.
-// Mirrored on the host by plugin/src/sim/gpu_layout.hpp; the two must change together (the host side has
+// Mirrored on the host by plugin/model/include/tressvk/model/gpu_layout.hpp; the two must change together (the host side has
 // static_asserts on every size and offset written here).
 //
 // One descriptor set (set 0) per hair instance, storage buffers only. Sizes: G guides, K follows per guide,

@@ -3,11 +3,11 @@
 // the Nth call for every N until a run completes without reaching N. Each time the call that hit the fault must
 // return a TvkResult error with a message, leave no validation message (the fixture fails the test on any), leak
 // no GPU allocation, and the host must be able to retry that same call and finish the lifecycle. The hook is a
-// private link of TvkContextCreateInfo::next (plugin/src/fault_injection.hpp), not part of the public API.
+// private link of TvkContextCreateInfo::next (plugin/src/core/fault_injection.hpp), not part of the public API.
 #include "leak_check.hpp"
 #include "sim_harness.hpp"
 
-#include "fault_injection.hpp"
+#include "core/fault_injection.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/engine/image.hpp>

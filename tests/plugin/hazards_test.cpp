@@ -1,5 +1,5 @@
-// The barrier derivation between simulation passes (plugin/src/hazards.hpp), on the real pass table.
-#include "hazards.hpp"
+// The barrier derivation between simulation passes (plugin/src/core/hazards.hpp), on the real pass table.
+#include "core/hazards.hpp"
 #include "sim/passes.hpp"
 
 #include <catch2/catch_test_macros.hpp>

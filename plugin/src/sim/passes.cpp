@@ -1,4 +1,4 @@
-#include "passes.hpp"
+#include "sim/passes.hpp"
 
 #include <array>
 #include <cmath>

@@ -3,7 +3,7 @@
 // with a compute-to-compute memory barrier between dependent passes (docs/rendering.md, "The compute path").
 #include "state.hpp"
 
-#include "../../objects.hpp"
+#include "core/objects.hpp"
 
 #include <algorithm>
 

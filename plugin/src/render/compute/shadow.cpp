@@ -3,7 +3,7 @@
 // the raster path's quads.
 #include "state.hpp"
 
-#include "../../objects.hpp"
+#include "core/objects.hpp"
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 // constants match shaders/render/compute/raster_layout.glsl.
 #pragma once
 
-#include "../../render.hpp"
+#include "render/render.hpp"
 
 #include <array>
 #include <cstdint>

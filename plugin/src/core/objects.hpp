@@ -2,9 +2,9 @@
 // state, parameters and the per-frame parameter ring).
 #pragma once
 
-#include "context.hpp"
-#include "gpu.hpp"
-#include "hazards.hpp"
+#include "core/context.hpp"
+#include "core/gpu.hpp"
+#include "core/hazards.hpp"
 #include "tressvk/model/gpu_layout.hpp"
 #include "sim/passes.hpp"
 

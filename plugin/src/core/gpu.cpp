@@ -1,4 +1,4 @@
-#include "gpu.hpp"
+#include "core/gpu.hpp"
 
 namespace tressvk {
 

@@ -1,6 +1,6 @@
-#include "context.hpp"
-#include "fault_injection.hpp"
-#include "objects.hpp"
+#include "core/context.hpp"
+#include "core/fault_injection.hpp"
+#include "core/objects.hpp"
 
 #include <cstdio>
 #include <memory>

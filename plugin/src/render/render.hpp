@@ -2,9 +2,9 @@
 // per-frame ring of constant blocks and descriptor pools (slot = context frame % frames_in_flight).
 #pragma once
 
-#include "context.hpp"
-#include "gpu.hpp"
-#include "render_constants.hpp"
+#include "core/context.hpp"
+#include "core/gpu.hpp"
+#include "render/constants.hpp"
 
 #include <tressvk/render.h>
 

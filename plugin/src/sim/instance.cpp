@@ -1,5 +1,5 @@
 // Instances: a placed asset with its own dynamic state, parameters, per-frame parameter ring and descriptor set.
-#include "objects.hpp"
+#include "core/objects.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -1,6 +1,6 @@
 // Recording the simulation: pipelines per pass variant, the per-frame parameter ring, and the barriers between
 // passes, derived from the pass table's read/write sets (see hazards.hpp).
-#include "objects.hpp"
+#include "core/objects.hpp"
 
 #include <algorithm>
 #include <cstring>

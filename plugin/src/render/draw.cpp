@@ -1,8 +1,8 @@
 // The recording calls: per draw, a constant block in this frame's ring slice (matrices made relative to the
 // instance's simulation origin in double), a descriptor set from this frame's pool, and the draws. No barrier,
 // no pass begin/end: both calls run inside the host's passes.
-#include "objects.hpp"
-#include "render.hpp"
+#include "core/objects.hpp"
+#include "render/render.hpp"
 
 #include <algorithm>
 #include <cmath>

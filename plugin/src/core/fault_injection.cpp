@@ -1,5 +1,5 @@
 // The fault-injection wrappers of fault_injection.hpp.
-#include "fault_injection.hpp"
+#include "core/fault_injection.hpp"
 
 namespace tressvk::fault {
 namespace {

@@ -2,7 +2,7 @@
 // deferred until the GPU can no longer be using them.
 #pragma once
 
-#include "context.hpp"
+#include "core/context.hpp"
 
 #include <cstdint>
 

@@ -1,6 +1,6 @@
 // TvkRenderer: creation, destruction and pipeline building (on first use). The recording calls are in
 // render_draw.cpp.
-#include "render.hpp"
+#include "render/render.hpp"
 
 #include "tressvk_render_spirv.h"
 

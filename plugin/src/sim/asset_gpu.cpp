@@ -1,6 +1,6 @@
 // Asset loading: read and verify a .tvkhair file, derive the model's rest data, and record the upload of the
 // static buffers into the host's command buffer.
-#include "objects.hpp"
+#include "core/objects.hpp"
 
 #include <tressvk/asset_io.hpp>
 
