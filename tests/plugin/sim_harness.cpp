@@ -2,7 +2,7 @@
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
-#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/host/hair_readback.hpp>
 
 #include <catch2/catch_test_macros.hpp>
 

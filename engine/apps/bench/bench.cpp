@@ -2,7 +2,7 @@
 
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/check.hpp>
-#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/host/hair_readback.hpp>
 #include <tressvk/asset_io.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>

@@ -3,7 +3,7 @@
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/device.hpp>
-#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/host/hair_readback.hpp>
 #include <tressvk/reference/scenes.hpp>
 #include <tressvk/reference/simulator.hpp>
 

@@ -11,7 +11,7 @@
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/device.hpp>
-#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/host/hair_readback.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/model/model.hpp>
 #include <tressvk/reference/scenes.hpp>

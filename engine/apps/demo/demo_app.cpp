@@ -1,7 +1,7 @@
 #include "demo_app.hpp"
 
 #include <tressvk/engine/frame_loop.hpp>
-#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/host/hair_readback.hpp>
 #include <tressvk/engine/sync.hpp>
 #include <tressvk/engine/timestamps.hpp>
 

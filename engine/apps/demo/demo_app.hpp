@@ -9,7 +9,7 @@
 
 #include "demo_options.hpp"
 #include "params.hpp"
-#include "plugin_host.hpp"
+#include <tressvk/host/plugin_host.hpp>
 #include "scene.hpp"
 #include "scene_renderer.hpp"
 #include "step_error.hpp"

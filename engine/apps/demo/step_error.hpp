@@ -6,7 +6,7 @@
 
 #include "params.hpp"
 
-#include <tressvk/engine/hair_readback.hpp>
+#include <tressvk/host/hair_readback.hpp>
 #include <tressvk/reference/simulator.hpp>
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "plugin_host.hpp"
+#include <tressvk/host/plugin_host.hpp>
 
 #include <cstdio>
 #include <string>
