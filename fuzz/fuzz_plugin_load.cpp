@@ -11,7 +11,7 @@
 #include "fuzz_common.hpp"
 
 #include <tressvk/engine/device.hpp>
-#include <tressvk/tressvk.h>
+#include <tressvk/host/plugin_host.hpp>
 
 #include <memory>
 #include <set>
@@ -46,8 +46,8 @@ struct Harness {
     options.app_name = "tressvk-fuzz";
     options.validation = true;
     options.sync_validation = true;
-    device = std::make_unique<engine::Device>(options);
-    TvkContextCreateInfo info = device->plugin_context_info();
+    device = std::make_unique<engine::Device>(host::with_plugin_requirements(options));
+    TvkContextCreateInfo info = host::context_info(*device);
     info.frames_in_flight = 2;
     if (tressvk_create_context(&info, &ctx) != TVK_SUCCESS) fuzz::finding("tressvk_create_context failed");
     TvkMemoryUsage usage{};

@@ -118,7 +118,8 @@ std::vector<DeviceInfo> list_devices() {
   return out;
 }
 
-Device::Device(const DeviceOptions& options) : log_(std::make_shared<MessageLog>()) {
+Device::Device(const DeviceOptions& options)
+    : log_(std::make_shared<MessageLog>()), requirements_(options.requirements) {
   log_->set_print(options.print_messages);
   try {
     create_instance(options);
@@ -246,8 +247,7 @@ void Device::pick_physical_device(const DeviceOptions& options) {
 
 void Device::create_device() {
   // The plugin's requirements are merged in before vkCreateDevice, as any host engine must do.
-  TvkDeviceRequirements req{};
-  tressvk_get_device_requirements(&req);
+  const DeviceRequirements& req = requirements_;
   api_version_ = std::max(api_version_, req.min_api_version);
   if (properties_.apiVersion < req.min_api_version)
     throw Error(std::string("device '") + name() + "' supports Vulkan " + api_version_string(properties_.apiVersion) +
@@ -272,8 +272,8 @@ void Device::create_device() {
   need(VK_TRUE, have13.dynamicRendering, "dynamicRendering");
   // The engine's depth barriers use DEPTH_ATTACHMENT_OPTIMAL / DEPTH_READ_ONLY_OPTIMAL on depth-only images.
   need(VK_TRUE, have12.separateDepthStencilLayouts, "separateDepthStencilLayouts");
-  need(req.synchronization2, have13.synchronization2, "synchronization2 (plugin)");
-  need(req.dynamic_rendering, have13.dynamicRendering, "dynamicRendering (plugin)");
+  need(req.synchronization2 ? VK_TRUE : VK_FALSE, have13.synchronization2, "synchronization2 (plugin)");
+  need(req.dynamic_rendering ? VK_TRUE : VK_FALSE, have13.dynamicRendering, "dynamicRendering (plugin)");
 
   uint32_t n_ext = 0;
   vk_check(vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &n_ext, nullptr),
@@ -282,10 +282,9 @@ void Device::create_device() {
   vk_check(vkEnumerateDeviceExtensionProperties(physical_device_, nullptr, &n_ext, device_ext.data()),
            "vkEnumerateDeviceExtensionProperties");
   std::vector<const char*> extensions;
-  for (uint32_t i = 0; i < req.extension_count; ++i) {
-    if (!has_extension(device_ext, req.extensions[i]))
-      missing += missing.empty() ? req.extensions[i] : std::string(", ") + req.extensions[i];
-    extensions.push_back(req.extensions[i]);
+  for (const std::string& e : req.extensions) {
+    if (!has_extension(device_ext, e.c_str())) missing += missing.empty() ? e : ", " + e;
+    extensions.push_back(e.c_str());
   }
   if (surface_ != VK_NULL_HANDLE) {
     if (!has_extension(device_ext, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
@@ -426,18 +425,6 @@ void Device::run_commands(const std::function<void(VkCommandBuffer)>& record) co
 }
 
 void Device::wait_idle() const { vk_check(vkDeviceWaitIdle(device_), "vkDeviceWaitIdle"); }
-
-TvkContextCreateInfo Device::plugin_context_info() const {
-  TvkContextCreateInfo info{};
-  info.struct_size = sizeof(TvkContextCreateInfo);
-  info.api_version = api_version_;
-  info.instance = instance_;
-  info.physical_device = physical_device_;
-  info.device = device_;
-  info.queue_family_index = queue_family_;
-  info.get_instance_proc_addr = vkGetInstanceProcAddr;
-  return info;
-}
 
 void Device::set_name(VkObjectType type, uint64_t handle, const char* object_name) const {
   if (!debug_utils_ || !object_name || !vkSetDebugUtilsObjectNameEXT) return;

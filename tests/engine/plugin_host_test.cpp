@@ -21,7 +21,7 @@ TEST_CASE("a TressVK context is created and destroyed on the engine's device", "
 }
 
 TEST_CASE("the plugin refuses a create-info without a device", "[vulkan][engine]") {
-  TvkContextCreateInfo info = test::device().plugin_context_info();
+  TvkContextCreateInfo info = host::context_info(test::device());
   info.device = VK_NULL_HANDLE;
   TvkContext context = nullptr;
   CHECK(tressvk_create_context(&info, &context) == TVK_ERROR_INVALID_ARGUMENT);

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     engine::DeviceOptions device_options;
     device_options.validation = true;
     device_options.sync_validation = true;
-    engine::Device device(device_options);
+    engine::Device device(host::with_plugin_requirements(device_options));
     demo::Options options;
     options.width = shot.width;
     options.height = shot.height;

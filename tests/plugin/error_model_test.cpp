@@ -47,7 +47,7 @@ TvkResult try_create_instance(TvkContext ctx, TvkAsset asset, const TvkSimSettin
 
 TEST_CASE("tressvk_create_context refuses bad settings naming the field, with the thread's last error",
           "[plugin][errors]") {
-  const TvkContextCreateInfo good = test::device().plugin_context_info();
+  const TvkContextCreateInfo good = host::context_info(test::device());
   struct Case {
     const char* field;
     TvkResult expected;

@@ -70,7 +70,7 @@ void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& tar
   w.control.arm(fail_at);
   w.link.control = &w.control;
   w.step("tressvk_create_context", [&] {
-    TvkContextCreateInfo info = dev.plugin_context_info();
+    TvkContextCreateInfo info = host::context_info(dev);
     info.next = &w.link;
     info.frames_in_flight = 2;
     return tressvk_create_context(&info, &w.ctx);

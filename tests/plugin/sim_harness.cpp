@@ -11,20 +11,8 @@
 namespace tressvk::test {
 
 TvkAsset load_asset(TvkContext ctx, const asset::HairAsset& hair) {
-  const std::vector<std::byte> bytes = asset::write(hair);
-  TvkAsset handle = nullptr;
-  TvkResult result = TVK_SUCCESS;
-  run_commands([&](VkCommandBuffer cmd) {
-    TvkAssetLoadInfo info{};
-    info.struct_size = sizeof(info);
-    info.data = bytes.data();
-    info.size = bytes.size();
-    info.upload_command_buffer = cmd;
-    result = tressvk_load_asset(ctx, &info, &handle);
-  });
-  INFO(tressvk_last_error(ctx));
-  REQUIRE(result == TVK_SUCCESS);
-  return handle;
+  // host::load_asset throws with tressvk_last_error's message, which Catch reports.
+  return host::load_asset(device(), ctx, asset::write(hair));
 }
 
 GpuInstance::GpuInstance(TvkContext ctx, TvkAsset asset, const std::vector<TvkSimParams>& params,
@@ -70,7 +58,7 @@ void run_frame_batched(TvkContext ctx, const std::vector<GpuInstance*>& instance
 }
 
 void GpuInstance::read_state() {
-  engine::HairState s = engine::read_hair_state(device(), instance_);
+  host::HairState s = host::read_hair_state(device(), instance_);
   state_.pos = std::move(s.positions);
   state_.prev = std::move(s.previous);
   state_.prevprev = std::move(s.previous_previous);

@@ -15,7 +15,7 @@ namespace tressvk::test {
 
 using Point = std::array<double, 3>;
 
-// Positions in simulation space, each the GPU's anchor + offset summed in double (engine::read_hair_state).
+// Positions in simulation space, each the GPU's anchor + offset summed in double (host::read_hair_state).
 struct GpuState {
   std::vector<Point> pos;           // G*(K+1)*N
   std::vector<Point> prev;          // G*N

@@ -3,6 +3,7 @@
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/check.hpp>
 #include <tressvk/host/hair_readback.hpp>
+#include <tressvk/host/plugin_host.hpp>
 #include <tressvk/asset_io.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>
@@ -17,11 +18,6 @@
 
 namespace tressvk::bench {
 namespace {
-
-void check_tvk(TvkResult r, TvkContext ctx, const char* what) {
-  if (r != TVK_SUCCESS)
-    throw std::runtime_error(std::string(what) + ": " + tressvk_result_string(r) + ": " + tressvk_last_error(ctx));
-}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -50,21 +46,13 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   out.guide_vertices = uint64_t{out.guides} * out.vertices_per_strand;
   out.rendered_vertices = out.guide_vertices * (1 + out.follows);
 
-  TvkContextCreateInfo ci = dev.plugin_context_info();
+  TvkContextCreateInfo ci = host::context_info(dev);
   ci.frames_in_flight = 1;  // every frame is waited for (the state is read back)
   ci.enable_timestamps = VK_TRUE;
   TvkContext ctx = nullptr;
-  check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+  host::check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
   const std::vector<std::byte> bytes = asset::write(groom);
-  TvkAsset asset = nullptr;
-  dev.run_commands([&](VkCommandBuffer cmd) {
-    TvkAssetLoadInfo li{};
-    li.struct_size = sizeof(li);
-    li.data = bytes.data();
-    li.size = bytes.size();
-    li.upload_command_buffer = cmd;
-    check_tvk(tressvk_load_asset(ctx, &li, &asset), ctx, "tressvk_load_asset");
-  });
+  TvkAsset asset = host::load_asset(dev, ctx, bytes);
   const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), opt.params);
   TvkInstanceCreateInfo ic{};
   ic.struct_size = sizeof(ic);
@@ -72,7 +60,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   ic.settings = &opt.settings;
   ic.params = &opt.params;
   TvkInstance inst = nullptr;
-  check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+  host::check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
 
   reference::Simulator step_ref(groom, params, opt.settings);  // reloaded from the GPU state before each frame
   reference::Simulator traj_ref(groom, params, opt.settings);  // free-running from the same initial state
@@ -85,7 +73,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   std::map<std::string, uint32_t> pass_dispatches;
   double traj_sum_sq = 0, stretch_mean_sum = 0;
   uint64_t traj_count = 0, steps_total = 0;
-  engine::HairState state;  // GPU state after the previous frame, when it was read back
+  host::HairState state;  // GPU state after the previous frame, when it was read back
   bool state_is_previous = false;
   const uint32_t total = opt.warmup + opt.frames;
   const uint32_t every = std::max(1u, opt.step_error_every);
@@ -103,8 +91,8 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
     else
       step_ref.planner().plan(frame);  // keep its planner in step with the GPU's
 
-    check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
-    check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+    host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+    host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
     if (timed && f > opt.warmup) {
       // The previous frame is complete (frames_in_flight = 1): collect its pass timings.
       TvkPassTiming timings[16];
@@ -122,14 +110,14 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
       si.struct_size = sizeof(si);
       si.instance_count = 1;
       si.instances = &inst;
-      check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+      host::check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
     });
     steps_total += plan.steps.size();
     if (timed && opt.trajectory) cpu_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
 
     state_is_previous = false;
     if (!measured(f) && !measured(f + 1)) continue;
-    state = engine::read_hair_state(dev, inst);
+    state = host::read_hair_state(dev, inst);
     state_is_previous = true;
     if (!measured(f)) continue;
     if (step_error_now) {

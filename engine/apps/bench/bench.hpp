@@ -4,6 +4,7 @@
 
 #include <tressvk/asset.hpp>
 #include <tressvk/engine/device.hpp>
+#include <tressvk/tressvk.h>
 
 #include <cstdint>
 #include <string>

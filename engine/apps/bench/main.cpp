@@ -12,6 +12,7 @@
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/check.hpp>
+#include <tressvk/host/plugin_host.hpp>
 #include <tressvk/reference/scenes.hpp>
 
 #include <CLI/CLI.hpp>
@@ -171,7 +172,7 @@ int main(int argc, char** argv) {
     dopt.app_name = "tressvk-bench";
     dopt.device = device;
     dopt.validation = validation;
-    engine::Device dev(dopt);
+    engine::Device dev(host::with_plugin_requirements(dopt));
     asset::HairAsset groom;
     std::string groom_name;
     if (!asset_path.empty()) {

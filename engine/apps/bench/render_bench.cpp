@@ -70,7 +70,7 @@ int run_render_bench(const RenderBenchOptions& o) {
     dopt.device = o.device;
     dopt.validation = o.validation;
     dopt.sync_validation = o.validation;
-    engine::Device dev(dopt);
+    engine::Device dev(host::with_plugin_requirements(dopt));
 
     demo::Options d;
     d.width = o.width;

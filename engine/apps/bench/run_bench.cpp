@@ -4,6 +4,7 @@
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/device.hpp>
 #include <tressvk/host/hair_readback.hpp>
+#include <tressvk/host/plugin_host.hpp>
 #include <tressvk/reference/scenes.hpp>
 #include <tressvk/reference/simulator.hpp>
 
@@ -15,11 +16,6 @@
 
 namespace tressvk::bench {
 namespace {
-
-void check_tvk(TvkResult r, TvkContext ctx, const char* what) {
-  if (r != TVK_SUCCESS)
-    throw std::runtime_error(std::string(what) + ": " + tressvk_result_string(r) + ": " + tressvk_last_error(ctx));
-}
 
 // Shortest text that reads back as the same double.
 void put_number(std::string& out, double v) {
@@ -95,30 +91,22 @@ int execute_run_command(const RunCommand& cmd) {
     dopt.device = cmd.device;
     dopt.validation = cmd.validation;
     dopt.sync_validation = cmd.validation;
-    engine::Device dev(dopt);
-    TvkContextCreateInfo ci = dev.plugin_context_info();
+    engine::Device dev(host::with_plugin_requirements(dopt));
+    TvkContextCreateInfo ci = host::context_info(dev);
     ci.frames_in_flight = 1;
     TvkContext ctx = nullptr;
-    check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+    host::check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
     const std::vector<std::byte> bytes = asset::write(groom);
-    TvkAsset asset = nullptr;
-    dev.run_commands([&](VkCommandBuffer c) {
-      TvkAssetLoadInfo li{};
-      li.struct_size = sizeof(li);
-      li.data = bytes.data();
-      li.size = bytes.size();
-      li.upload_command_buffer = c;
-      check_tvk(tressvk_load_asset(ctx, &li, &asset), ctx, "tressvk_load_asset");
-    });
+    TvkAsset asset = host::load_asset(dev, ctx, bytes);
     TvkInstanceCreateInfo ic{};
     ic.struct_size = sizeof(ic);
     ic.asset = asset;
     ic.settings = &cmd.settings;
     ic.params = &cmd.params;
     TvkInstance inst = nullptr;
-    check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+    host::check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
     for (uint32_t g = 0; g < std::max<size_t>(1, groom.groups.size()); ++g)
-      check_tvk(tressvk_set_sim_params(inst, g, &cmd.params), ctx, "tressvk_set_sim_params");
+      host::check_tvk(tressvk_set_sim_params(inst, g, &cmd.params), ctx, "tressvk_set_sim_params");
 
     reference::Simulator probe(groom, std::span<const TvkSimParams>(&cmd.params, 1), cmd.settings);
     const reference::SceneGeometry geometry = reference::scene_geometry(probe.rest());
@@ -135,19 +123,19 @@ int execute_run_command(const RunCommand& cmd) {
     for (uint32_t f = 0; f < cmd.frames; ++f) {
       const TvkSimFrame frame = reference::scene_frame(cmd.scene, f, geometry);
       time += static_cast<double>(frame.dt);
-      check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
-      check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+      host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
       dev.run_commands([&](VkCommandBuffer c) {
         TvkSimulateInfo si{};
         si.struct_size = sizeof(si);
         si.instance_count = 1;
         si.instances = &inst;
-        check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
+        host::check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
       });
       if (f % cmd.dump_every != 0 && f + 1 != cmd.frames) continue;
-      const engine::HairState state = engine::read_hair_state(dev, inst);
+      const host::HairState state = host::read_hair_state(dev, inst);
       TvkInstanceBuffers buffers{};
-      check_tvk(tressvk_get_instance_buffers(inst, &buffers), ctx, "tressvk_get_instance_buffers");
+      host::check_tvk(tressvk_get_instance_buffers(inst, &buffers), ctx, "tressvk_get_instance_buffers");
       json += first_frame ? "\n" : ",\n";
       first_frame = false;
       json += "{\"frame\": " + std::to_string(f) + ", \"time_s\": ";

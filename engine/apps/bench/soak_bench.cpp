@@ -12,6 +12,7 @@
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/device.hpp>
 #include <tressvk/host/hair_readback.hpp>
+#include <tressvk/host/plugin_host.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/model/model.hpp>
 #include <tressvk/reference/scenes.hpp>
@@ -74,11 +75,6 @@ double rss_mb() {
   return n == 2 ? double(resident) * 4096.0 / (1024.0 * 1024.0) : 0;
 }
 
-void check(TvkResult r, TvkContext ctx, const char* what) {
-  if (r != TVK_SUCCESS)
-    throw std::runtime_error(std::string(what) + ": " + tressvk_result_string(r) + ": " + tressvk_last_error(ctx));
-}
-
 }  // namespace
 
 CLI::App* add_soak_subcommand(CLI::App& app) {
@@ -108,7 +104,7 @@ int run_soak() {
   dopt.device = o.device;
   dopt.validation = o.validation;
   dopt.sync_validation = o.validation;
-  engine::Device dev(dopt);
+  engine::Device dev(host::with_plugin_requirements(dopt));
   asset::HairAsset groom;
   std::string groom_name;
   if (!o.asset_path.empty()) {
@@ -124,20 +120,12 @@ int run_soak() {
   const reference::SceneGeometry geometry = reference::scene_geometry(rest);
   const std::vector<std::string> scenes = reference::scene_names();
 
-  TvkContextCreateInfo ci = dev.plugin_context_info();
+  TvkContextCreateInfo ci = host::context_info(dev);
   ci.frames_in_flight = 1;  // every frame is submitted and waited for, so the state can be read back any time
   TvkContext ctx = nullptr;
-  check(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+  host::check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
   const std::vector<std::byte> bytes = asset::write(groom);
-  TvkAsset asset = nullptr;
-  dev.run_commands([&](VkCommandBuffer cmd) {
-    TvkAssetLoadInfo li{};
-    li.struct_size = sizeof(li);
-    li.data = bytes.data();
-    li.size = bytes.size();
-    li.upload_command_buffer = cmd;
-    check(tressvk_load_asset(ctx, &li, &asset), ctx, "tressvk_load_asset");
-  });
+  TvkAsset asset = host::load_asset(dev, ctx, bytes);
 
   std::mt19937_64 rng(o.seed);
   const auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -159,7 +147,7 @@ int run_soak() {
     ic.struct_size = sizeof(ic);
     ic.asset = asset;
     ic.settings = &settings;
-    check(tressvk_create_instance(ctx, &ic, &s.handle), ctx, "tressvk_create_instance");
+    host::check_tvk(tressvk_create_instance(ctx, &ic, &s.handle), ctx, "tressvk_create_instance");
     s.scene = scenes[rng() % scenes.size()];
     live.push_back(s);
     ++t.created;
@@ -213,7 +201,7 @@ int run_soak() {
         p.damping = static_cast<float>(uniform(0.0, 0.3));
         p.local_iterations = 1 + static_cast<uint32_t>(rng() % 4);
         p.length_iterations = 1 + static_cast<uint32_t>(rng() % 3);
-        check(tressvk_set_sim_params(s.handle, TVK_ALL_GROUPS, &p), ctx, "tressvk_set_sim_params");
+        host::check_tvk(tressvk_set_sim_params(s.handle, TVK_ALL_GROUPS, &p), ctx, "tressvk_set_sim_params");
         ++t.param_changes;
       }
       if (chance(0.002)) {
@@ -221,21 +209,21 @@ int run_soak() {
         const float rates[4] = {60.0f, 120.0f, 240.0f, 480.0f};
         st.time.step_rate = rates[rng() % 4];
         st.gravity[1] = static_cast<float>(uniform(-20.0, 0.0));
-        check(tressvk_set_sim_settings(s.handle, &st), ctx, "tressvk_set_sim_settings");
+        host::check_tvk(tressvk_set_sim_settings(s.handle, &st), ctx, "tressvk_set_sim_settings");
         ++t.settings_changes;
       }
       if (chance(0.02)) frame.wind.direction[0] = static_cast<float>(uniform(-1, 1));
-      check(tressvk_set_frame(s.handle, &frame), ctx, "tressvk_set_frame");
+      host::check_tvk(tressvk_set_frame(s.handle, &frame), ctx, "tressvk_set_frame");
       handles.push_back(s.handle);
       ++s.frame;
     }
-    check(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+    host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
     dev.run_commands([&](VkCommandBuffer cmd) {
       TvkSimulateInfo si{};
       si.struct_size = sizeof(si);
       si.instance_count = static_cast<uint32_t>(handles.size());
       si.instances = handles.data();
-      check(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+      host::check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
     });
     ++t.frames;
     t.instance_frames += handles.size();
@@ -243,11 +231,11 @@ int run_soak() {
     if (t.frames % o.check_every == 0) {
       ++t.checks;
       for (const SoakInstance& s : live) {
-        const engine::HairState state = engine::read_hair_state(dev, s.handle);
+        const host::HairState state = host::read_hair_state(dev, s.handle);
         const auto h = reference::health(std::span<const std::array<double, 3>>(state.positions), rest);
         const auto st = reference::stretch(std::span<const std::array<double, 3>>(state.positions), rest);
         TvkInstanceStats stats{};
-        check(tressvk_get_instance_stats(s.handle, &stats), ctx, "tressvk_get_instance_stats");
+        host::check_tvk(tressvk_get_instance_stats(s.handle, &stats), ctx, "tressvk_get_instance_stats");
         t.nan_strands = std::max<uint64_t>(t.nan_strands, h.nan_strands);
         t.exploded = std::max<uint64_t>(t.exploded, h.exploded_strands);
         t.resets = std::max<uint64_t>(t.resets, stats.nonfinite_strand_resets);
@@ -257,10 +245,10 @@ int run_soak() {
         if (!(st.max <= o.max_stretch)) fail("stretch " + std::to_string(st.max) + " at frame " + std::to_string(t.frames));
       }
       // GPU memory with n live instances (after retiring released buffers) must not grow over the run.
-      check(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
-      check(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
       TvkMemoryUsage usage{};
-      check(tressvk_get_memory_usage(ctx, &usage), ctx, "tressvk_get_memory_usage");
+      host::check_tvk(tressvk_get_memory_usage(ctx, &usage), ctx, "tressvk_get_memory_usage");
       auto [it, first] = t.gpu_bytes_by_instances.try_emplace(static_cast<uint32_t>(live.size()), usage.device_bytes,
                                                                usage.device_bytes);
       it->second.second = usage.device_bytes;

@@ -171,12 +171,12 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   if (probe_) {  // step error: the GPU state around one frame, compared with the reference's step
     if (step_error_pending_) {
       device_.wait_idle();
-      step_error_ = probe_->finish(engine::read_hair_state(device_, hair_->instance()));
+      step_error_ = probe_->finish(host::read_hair_state(device_, hair_->instance()));
       step_error_pending_ = false;
     }
     if (step_error_requested_) {
       device_.wait_idle();
-      probe_->start(sim, engine::read_hair_state(device_, hair_->instance()), params_);
+      probe_->start(sim, host::read_hair_state(device_, hair_->instance()), params_);
       step_error_requested_ = false;
       step_error_pending_ = true;
     } else {

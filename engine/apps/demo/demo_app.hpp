@@ -30,6 +30,10 @@
 
 namespace tressvk::demo {
 
+using host::check_tvk;
+using host::HairHost;
+using host::PluginContext;
+
 struct FrameReport {
   uint32_t index = 0;
   engine::Pixels pixels;

@@ -56,7 +56,7 @@ int run(const tressvk::demo::Options& options) {
   device_options.device = options.device;
   device_options.validation = options.validation;
   device_options.sync_validation = options.validation;
-  auto device_owner = std::make_unique<engine::Device>(device_options);
+  auto device_owner = std::make_unique<engine::Device>(host::with_plugin_requirements(device_options));
   engine::Device& device = *device_owner;
   const auto messages = device.message_log();
   std::printf("device: %s%s\n", device.description().c_str(),

@@ -29,7 +29,7 @@ StepErrorProbe::~StepErrorProbe() = default;
 
 void StepErrorProbe::track(const TvkSimFrame& frame) { tracker_->planner().plan(frame); }
 
-void StepErrorProbe::start(const TvkSimFrame& frame, const engine::HairState& before, const Params& params) {
+void StepErrorProbe::start(const TvkSimFrame& frame, const host::HairState& before, const Params& params) {
   const std::vector<TvkSimParams> p = group_params(asset_, params);
   measured_ = std::make_unique<reference::Simulator>(asset_, p, params.settings);
   measured_->planner() = tracker_->planner();  // the plugin's planning history up to frame k-1
@@ -40,7 +40,7 @@ void StepErrorProbe::start(const TvkSimFrame& frame, const engine::HairState& be
   tracker_->planner().plan(frame);
 }
 
-double StepErrorProbe::finish(const engine::HairState& after) {
+double StepErrorProbe::finish(const host::HairState& after) {
   if (!measured_) throw engine::Error("step error: no frame is being measured");
   const auto e = reference::position_error(std::span<const std::array<double, 3>>(after.positions),
                                            measured_->positions(), measured_->median_strand_length());

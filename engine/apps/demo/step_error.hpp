@@ -23,9 +23,9 @@ class StepErrorProbe {
   // Every frame that is not measured: keeps the planner in step with the plugin's.
   void track(const TvkSimFrame& frame);
   // Frame k is measured: before = the GPU state after frame k-1; params = those in effect now.
-  void start(const TvkSimFrame& frame, const engine::HairState& before, const Params& params);
+  void start(const TvkSimFrame& frame, const host::HairState& before, const Params& params);
   // after = the GPU state after frame k. Returns the largest vertex distance / median strand length.
-  double finish(const engine::HairState& after);
+  double finish(const host::HairState& after);
 
  private:
   asset::HairAsset asset_;

@@ -83,7 +83,7 @@ int run(const viewer::ViewerOptions& options) {
   device_options.sync_validation = options.validation;
   device_options.instance_extensions = window.instance_extensions();
   device_options.create_surface = [&](VkInstance instance) { return window.create_surface(instance); };
-  auto device = std::make_unique<engine::Device>(device_options);
+  auto device = std::make_unique<engine::Device>(host::with_plugin_requirements(device_options));
   const auto messages = device->message_log();
   std::printf("device: %s%s\n", device->description().c_str(),
               options.validation ? " [validation + synchronization validation]" : "");

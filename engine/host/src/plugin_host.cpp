@@ -1,9 +1,10 @@
 #include <tressvk/host/plugin_host.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
-namespace tressvk::demo {
+namespace tressvk::host {
 
 namespace {
 void on_plugin_message(TvkMessageSeverity severity, const char* message, void* /*user_data*/) {
@@ -12,6 +13,44 @@ void on_plugin_message(TvkMessageSeverity severity, const char* message, void* /
   std::fprintf(severity == TVK_MESSAGE_INFO ? stdout : stderr, "tressvk %s: %s\n", level, message);
 }
 }  // namespace
+
+engine::DeviceOptions with_plugin_requirements(engine::DeviceOptions options) {
+  TvkDeviceRequirements req{};
+  tressvk_get_device_requirements(&req);
+  engine::DeviceRequirements& r = options.requirements;
+  r.min_api_version = std::max(r.min_api_version, req.min_api_version);
+  r.synchronization2 = r.synchronization2 || req.synchronization2;
+  r.dynamic_rendering = r.dynamic_rendering || req.dynamic_rendering;
+  for (uint32_t i = 0; i < req.extension_count; ++i)
+    if (std::find(r.extensions.begin(), r.extensions.end(), req.extensions[i]) == r.extensions.end())
+      r.extensions.emplace_back(req.extensions[i]);
+  return options;
+}
+
+TvkContextCreateInfo context_info(const engine::Device& device) {
+  TvkContextCreateInfo info{};
+  info.struct_size = sizeof(TvkContextCreateInfo);
+  info.api_version = device.api_version();
+  info.instance = device.instance();
+  info.physical_device = device.physical_device();
+  info.device = device.device();
+  info.queue_family_index = device.queue_family();
+  info.get_instance_proc_addr = vkGetInstanceProcAddr;
+  return info;
+}
+
+TvkAsset load_asset(const engine::Device& device, TvkContext context, std::span<const std::byte> asset_bytes) {
+  TvkAsset asset = nullptr;
+  device.run_commands([&](VkCommandBuffer cmd) {
+    TvkAssetLoadInfo li{};
+    li.struct_size = sizeof(li);
+    li.data = asset_bytes.data();
+    li.size = asset_bytes.size();
+    li.upload_command_buffer = cmd;
+    check_tvk(tressvk_load_asset(context, &li, &asset), context, "tressvk_load_asset");
+  });
+  return asset;
+}
 
 void check_tvk(TvkResult result, TvkContext context, const char* what) {
   if (result == TVK_SUCCESS) return;
@@ -23,7 +62,7 @@ PluginContext::PluginContext(engine::Device& device, uint32_t frames_in_flight, 
   if (TVK_CHECK_VERSION() != TVK_SUCCESS)
     throw engine::Error("libtressvk " + std::to_string(tressvk_version()) + " does not match the header " +
                         std::to_string(TVK_VERSION_NUM));
-  TvkContextCreateInfo info = device.plugin_context_info();
+  TvkContextCreateInfo info = context_info(device);
   info.frames_in_flight = frames_in_flight;
   info.message_callback = on_plugin_message;
   info.enable_timestamps = timestamps ? VK_TRUE : VK_FALSE;
@@ -42,16 +81,7 @@ HairHost::HairHost(engine::Device& device, TvkContext context, std::span<const s
                    const TvkRendererCreateInfo& renderer_info)
     : device_(device), context_(context) {
   try {
-    // The asset's upload is recorded into a command buffer of ours; a one-time submission here (a streaming
-    // engine would put it into the first frame that uses the asset).
-    device.run_commands([&](VkCommandBuffer cmd) {
-      TvkAssetLoadInfo li{};
-      li.struct_size = sizeof(li);
-      li.data = asset_bytes.data();
-      li.size = asset_bytes.size();
-      li.upload_command_buffer = cmd;
-      check_tvk(tressvk_load_asset(context, &li, &asset_), context, "tressvk_load_asset");
-    });
+    asset_ = load_asset(device, context, asset_bytes);
     check_tvk(tressvk_get_asset_info(asset_, &info_), context, "tressvk_get_asset_info");
     TvkInstanceCreateInfo ic{};
     ic.struct_size = sizeof(ic);
@@ -76,4 +106,4 @@ void HairHost::release() {
   asset_ = nullptr;
 }
 
-}  // namespace tressvk::demo
+}  // namespace tressvk::host

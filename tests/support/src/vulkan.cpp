@@ -81,7 +81,7 @@ engine::Device& create_device_locked(FixtureState& f) {
   options.sync_validation = true;
   options.print_messages = true;
   try {
-    auto dev = std::make_unique<engine::Device>(options);
+    auto dev = std::make_unique<engine::Device>(host::with_plugin_requirements(options));
     f.log = dev->message_log();
     f.log->set_hook(on_validation_message);
     std::printf("TressVK tests: device %s, validation + synchronization validation on\n",
@@ -171,7 +171,7 @@ void PluginContextDeleter::operator()(TvkContext context) const {
 PluginContext create_plugin_context(uint32_t frames_in_flight) {
   engine::Device& dev = device();
   static std::string last_error;  // outlives the context: the callback may run until destruction
-  TvkContextCreateInfo info = dev.plugin_context_info();
+  TvkContextCreateInfo info = host::context_info(dev);
   info.frames_in_flight = frames_in_flight;
   info.message_callback = on_plugin_message;
   info.message_user_data = &last_error;

@@ -6,7 +6,6 @@
 #include <tressvk/engine/check.hpp>
 #include <tressvk/engine/device_select.hpp>
 #include <tressvk/engine/messenger.hpp>
-#include <tressvk/tressvk.h>
 
 #include <volk.h>
 #include <vk_mem_alloc.h>
@@ -17,6 +16,15 @@
 #include <vector>
 
 namespace tressvk::engine {
+
+// What a plugin needs of the device, merged in before vkCreateDevice (tressvk::host::with_plugin_requirements
+// fills it from tressvk_get_device_requirements); a missing feature or extension is an error naming it.
+struct DeviceRequirements {
+  uint32_t min_api_version = 0;
+  std::vector<std::string> extensions;
+  bool synchronization2 = false;
+  bool dynamic_rendering = false;
+};
 
 struct DeviceOptions {
   std::string app_name = "tressvk";
@@ -32,6 +40,7 @@ struct DeviceOptions {
   // can also present to it. Left empty (the default) the device stays headless: no surface, no swapchain.
   std::vector<std::string> instance_extensions;
   std::function<VkSurfaceKHR(VkInstance)> create_surface;
+  DeviceRequirements requirements;  // the plugin's (see tressvk::host::with_plugin_requirements)
 };
 
 // A device as listed by list_devices().
@@ -87,9 +96,6 @@ class Device {
   void run_commands(const std::function<void(VkCommandBuffer)>& record) const;
   void wait_idle() const;
 
-  // Fills a TvkContextCreateInfo for this device (the caller adds callbacks and options).
-  TvkContextCreateInfo plugin_context_info() const;
-
   // Debug name for a Vulkan object (shows in validation messages); a no-op without VK_EXT_debug_utils.
   void set_name(VkObjectType type, uint64_t handle, const char* name) const;
 
@@ -105,6 +111,7 @@ class Device {
   bool sync_validation_ = false;
   bool debug_utils_ = false;
   uint32_t api_version_ = VK_API_VERSION_1_3;
+  DeviceRequirements requirements_;
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace tressvk::engine {
+namespace tressvk::host {
 
 // Positions in simulation space (world axes, origin at TvkInstanceBuffers::origin): each strand's anchor plus the
 // vertex's offset from it, summed in double, so nothing is rounded beyond what the GPU holds. Strand by strand (vertex
@@ -24,7 +24,7 @@ struct HairState {
   std::vector<std::array<float, 4>> anchors;             // per guide (xyz), as the GPU holds them
 };
 
-inline HairState read_hair_state(const Device& device, TvkInstance instance) {
+inline HairState read_hair_state(const engine::Device& device, TvkInstance instance) {
   TvkInstanceBuffers b{};
   if (tressvk_get_instance_buffers(instance, &b) != TVK_SUCCESS)
     throw std::runtime_error("tressvk_get_instance_buffers failed");
@@ -33,9 +33,9 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
                                     b.anchors};
   const VkDeviceSize sizes[kCount] = {b.positions_size, b.previous_positions_size, b.previous_positions_size,
                                       b.tangents_size, b.anchors_size};
-  std::array<Buffer, kCount> copies;
+  std::array<engine::Buffer, kCount> copies;
   for (size_t i = 0; i < kCount; ++i)
-    copies[i] = create_buffer(device, sizes[i], VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback);
+    copies[i] = engine::create_buffer(device, sizes[i], VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
   device.run_commands([&](VkCommandBuffer cmd) {
     VkMemoryBarrier2 barrier{};
     barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
@@ -55,7 +55,7 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
   });
   using Vec4 = std::array<float, 4>;
   HairState s;
-  s.anchors = read_buffer_as<Vec4>(device, copies[4], sizes[4] / sizeof(Vec4));
+  s.anchors = engine::read_buffer_as<Vec4>(device, copies[4], sizes[4] / sizeof(Vec4));
   const size_t n = b.vertices_per_strand, guides = b.guide_count;
   // Element of vertex v of strand s in the GPU's blocked layout (tressvk.h, TvkInstanceBuffers).
   const auto element = [n](size_t strand, size_t v) {
@@ -73,10 +73,10 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
     return out;
   };
   const size_t all = guides * (1 + b.follow_per_guide);
-  s.positions = absolute(read_buffer_as<Vec4>(device, copies[0], sizes[0] / sizeof(Vec4)), all);
-  s.previous = absolute(read_buffer_as<Vec4>(device, copies[1], sizes[1] / sizeof(Vec4)), guides);
-  s.previous_previous = absolute(read_buffer_as<Vec4>(device, copies[2], sizes[2] / sizeof(Vec4)), guides);
-  const std::vector<Vec4> tangents = read_buffer_as<Vec4>(device, copies[3], sizes[3] / sizeof(Vec4));
+  s.positions = absolute(engine::read_buffer_as<Vec4>(device, copies[0], sizes[0] / sizeof(Vec4)), all);
+  s.previous = absolute(engine::read_buffer_as<Vec4>(device, copies[1], sizes[1] / sizeof(Vec4)), guides);
+  s.previous_previous = absolute(engine::read_buffer_as<Vec4>(device, copies[2], sizes[2] / sizeof(Vec4)), guides);
+  const std::vector<Vec4> tangents = engine::read_buffer_as<Vec4>(device, copies[3], sizes[3] / sizeof(Vec4));
   s.tangents.resize(all * n);
   for (size_t strand = 0; strand < all; ++strand)
     for (size_t v = 0; v < n; ++v)
@@ -84,4 +84,4 @@ inline HairState read_hair_state(const Device& device, TvkInstance instance) {
   return s;
 }
 
-}  // namespace tressvk::engine
+}  // namespace tressvk::host

@@ -1,5 +1,6 @@
-// The demo's side of the plugin integration: the TressVK context made on the engine's device, and one hair
-// instance (asset, instance, renderer) with the calls a host makes each frame.
+// The host glue: what every program here (demo, bench, viewer, tests, fuzz harness) does to put TressVK on the
+// engine's device: merge the plugin's device requirements, make the context, upload an asset, hold one head of hair
+// (asset, instance, renderer). The engine core itself never includes the plugin; this library is where they meet.
 #pragma once
 
 #include <tressvk/engine/device.hpp>
@@ -9,7 +10,21 @@
 #include <span>
 #include <vector>
 
-namespace tressvk::demo {
+namespace tressvk::host {
+
+// The options with the plugin's device requirements (tressvk_get_device_requirements) merged in: the least API
+// version, features and extensions that engine::Device enables at vkCreateDevice, as any host engine must.
+engine::DeviceOptions with_plugin_requirements(engine::DeviceOptions options);
+
+// A TvkContextCreateInfo for the engine's device (the caller adds callbacks and options).
+TvkContextCreateInfo context_info(const engine::Device& device);
+
+// Throws engine::Error with the plugin's message when a TressVK call fails.
+void check_tvk(TvkResult result, TvkContext context, const char* what);
+
+// Loads a .tvkhair image through the plugin, its upload recorded into a one-time submission on the engine's queue
+// (a streaming engine would put it into the first frame that uses the asset). Throws engine::Error on failure.
+TvkAsset load_asset(const engine::Device& device, TvkContext context, std::span<const std::byte> asset_bytes);
 
 // Owns a TvkContext. Construction checks the header/library version and creates the context on the engine's
 // device (which merged tressvk_get_device_requirements() into vkCreateDevice); destruction waits for the device
@@ -27,9 +42,6 @@ class PluginContext {
   engine::Device& device_;
   TvkContext context_ = nullptr;
 };
-
-// Throws engine::Error with the plugin's message when a TressVK call fails.
-void check_tvk(TvkResult result, TvkContext context, const char* what);
 
 // One head of hair: the asset (uploaded with a one-time submission), an instance of it, and a renderer for the
 // host's shading target (dynamic rendering formats, or a VkRenderPass) and its shadow map. Destroyed in reverse
@@ -57,4 +69,4 @@ class HairHost {
   TvkAssetInfo info_{};
 };
 
-}  // namespace tressvk::demo
+}  // namespace tressvk::host

@@ -38,7 +38,7 @@ class Simulator {
   void set_state(std::span<const sim::Vec4> pos, std::span<const sim::Vec4> prev, std::span<const sim::Vec4> prevprev);
   // The same from double positions (e.g. a GPU state held as per-strand anchor + float offset, summed in double).
   void set_state(std::span<const Vec3> pos, std::span<const Vec3> prev, std::span<const Vec3> prevprev);
-  using Point = std::array<double, 3>;  // e.g. tressvk::engine::HairState's positions
+  using Point = std::array<double, 3>;  // e.g. tressvk::host::HairState's positions
   void set_state(std::span<const Point> pos, std::span<const Point> prev, std::span<const Point> prevprev);
 
   // Runs every substep of the plan, then the follow update (when the plan has steps).

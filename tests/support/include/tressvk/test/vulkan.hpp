@@ -27,7 +27,7 @@
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/messenger.hpp>
-#include <tressvk/tressvk.h>
+#include <tressvk/host/plugin_host.hpp>
 
 #include <cstdint>
 #include <filesystem>
