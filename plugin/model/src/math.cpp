@@ -1,6 +1,6 @@
 #include "tressvk/model/math.hpp"
 
-namespace tressvk::reference {
+namespace tressvk::model {
 
 Quat quat_from_matrix(const std::array<std::array<double, 3>, 3>& m) {
   // Shepperd's method: branch on the largest of the trace and the diagonal for a well-conditioned square root.
@@ -31,4 +31,4 @@ std::array<std::array<double, 3>, 3> matrix_from_quat(Quat q) {
   return m;
 }
 
-}  // namespace tressvk::reference
+}  // namespace tressvk::model

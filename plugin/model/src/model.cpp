@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace tressvk::reference {
+namespace tressvk::model {
 namespace {
 
 Vec3 widen(const std::array<float, 4>& v) { return {v[0], v[1], v[2]}; }
@@ -186,4 +186,4 @@ double median_strand_length(const ModelRest& m) {
   return *mid;
 }
 
-}  // namespace tressvk::reference
+}  // namespace tressvk::model

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace tressvk::reference {
+namespace tressvk::model {
 namespace {
 
 void require(bool ok, const std::string& what) {
@@ -437,4 +437,4 @@ sim::GroupParams to_gpu(const GroupStep& g) {
   return p;
 }
 
-}  // namespace tressvk::reference
+}  // namespace tressvk::model

@@ -21,7 +21,7 @@
 struct TvkAsset_T {
   tressvk::Context* ctx = nullptr;
   tressvk::asset::HairAsset cpu;        // kept for group names, bone count and the reference
-  tressvk::reference::ModelRest rest;   // the model's rest data (double), from which the GPU data is made
+  tressvk::model::ModelRest rest;   // the model's rest data (double), from which the GPU data is made
   float median_strand_length = 0.0f;
   // Static buffers, bindings 4..11 of shaders/sim/layout.glsl.
   std::array<tressvk::GpuBuffer, 8> statics{};
@@ -38,7 +38,7 @@ struct TvkInstance_T {
   TvkSimFrame frame{};                  // this frame's input (tressvk_set_frame)
   std::vector<TvkBoneMatrix> bones;     // copy of frame.bones
   bool frame_set = false;
-  std::unique_ptr<tressvk::reference::FramePlanner> planner;
+  std::unique_ptr<tressvk::model::FramePlanner> planner;
 
   // Dynamic state, bindings 0..3, the counters (binding 15, host-visible) and the guides' anchors (binding 16).
   tressvk::GpuBuffer positions, prev, prevprev, tangents, counters, anchors;

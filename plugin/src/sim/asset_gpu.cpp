@@ -29,7 +29,7 @@ std::span<const std::byte> bytes_of(const std::vector<T>& v) {
 }
 
 TvkResult upload_statics(Context& ctx, TvkAsset_T& a, VkCommandBuffer cmd) {
-  const tressvk::reference::GpuStatic gpu = tressvk::reference::build_gpu_static(a.rest);
+  const tressvk::model::GpuStatic gpu = tressvk::model::build_gpu_static(a.rest);
   const std::array<std::span<const std::byte>, 8> sections = {
       bytes_of(gpu.rest_positions), bytes_of(gpu.rest_info),  bytes_of(gpu.rest_edge_local),
       bytes_of(gpu.root_frames),    bytes_of(gpu.follow_offsets), bytes_of(gpu.guide_info),
@@ -131,8 +131,8 @@ TvkResult tressvk_load_asset(TvkContext context, const TvkAssetLoadInfo* info, T
     std::unique_ptr<TvkAsset_T, FreeNow> a(new TvkAsset_T());
     a->ctx = &ctx;
     a->cpu = std::move(read.asset);
-    a->rest = tressvk::reference::build_model_rest(a->cpu);
-    a->median_strand_length = static_cast<float>(tressvk::reference::median_strand_length(a->rest));
+    a->rest = tressvk::model::build_model_rest(a->cpu);
+    a->median_strand_length = static_cast<float>(tressvk::model::median_strand_length(a->rest));
     if (TvkResult r = upload_statics(ctx, *a, info->upload_command_buffer); r != TVK_SUCCESS) return r;
     ctx.message(TVK_MESSAGE_INFO, "loaded %s: %u guides x %u vertices, %u follows per guide", source,
                 a->rest.guide_count, a->rest.vertices_per_strand, a->rest.follow_per_guide);

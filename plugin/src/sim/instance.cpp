@@ -118,9 +118,9 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
 }
 
 TvkResult check_params(Context& ctx, const TvkSimParams& p, const char* what) {
-  // The reference's conversion validates every field and names the one at fault.
+  // The model's conversion validates every field and names the one at fault.
   try {
-    (void)tressvk::reference::to_group_step(p, 1.0 / 120.0, 0.0);
+    (void)tressvk::model::to_group_step(p, 1.0 / 120.0, 0.0);
   } catch (const std::exception& e) {
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: %s", what, e.what());
   }
@@ -156,7 +156,7 @@ TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInf
     inst->settings = settings;
     inst->params.assign(std::max<size_t>(1, info->asset->cpu.groups.size()), params);
     // The planner checks the settings and names the field at fault (e.g. time.step_rate); it throws.
-    inst->planner = std::make_unique<tressvk::reference::FramePlanner>(settings, info->asset->cpu.origin,
+    inst->planner = std::make_unique<tressvk::model::FramePlanner>(settings, info->asset->cpu.origin,
                                                                         info->asset->rest.bone_count);
     if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) return r;
     // Handed to the host: only now does the instance count as a user of the asset.
@@ -205,7 +205,7 @@ TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
   // Every host number is checked here, so a NaN or infinity never reaches the GPU (where it would reset every strand
   // every step and freeze the groom) and the host learns which field was wrong.
   try {
-    tressvk::reference::validate_frame(*frame, instance->asset->rest.bone_count);
+    tressvk::model::validate_frame(*frame, instance->asset->rest.bone_count);
   } catch (const std::exception& e) {
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_frame: %s", e.what());
   }

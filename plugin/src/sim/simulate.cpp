@@ -144,7 +144,7 @@ void record_barriers(Context& ctx, VkCommandBuffer cmd, const std::vector<VkBuff
 
 struct InstanceWork {
   TvkInstance_T* inst = nullptr;
-  reference::FramePlan plan;
+  model::FramePlan plan;
   uint32_t steps = 0;
   uint32_t skin_stride = 0;  // vec4 per substep
   std::vector<PassUse> passes;
@@ -155,7 +155,7 @@ struct InstanceWork {
 TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   work.inst = &inst;
   work.plan = inst.planner->plan(inst.frame);
-  const reference::GpuFrame gpu = reference::to_gpu(work.plan);
+  const model::GpuFrame gpu = model::to_gpu(work.plan);
   work.steps = static_cast<uint32_t>(work.plan.steps.size());
   work.skin_stride = gpu.skin_stride;
   if (work.steps > TVK_MAX_STEPS_PER_FRAME)
@@ -167,7 +167,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   const double h = inst.planner->step_length();
   for (size_t g = 0; g < inst.params.size(); ++g) {
     const sim::GroupParams gp =
-        reference::to_gpu(reference::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation));
+        model::to_gpu(model::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation));
     std::memcpy(ring + base + inst.groups_offset + g * sizeof(gp), &gp, sizeof(gp));
   }
   if (!gpu.steps.empty())

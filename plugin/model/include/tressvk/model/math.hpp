@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 
-namespace tressvk::reference {
+namespace tressvk::model {
 
 struct Vec3 {
   double x = 0, y = 0, z = 0;
@@ -99,4 +99,4 @@ inline Quat slerp(Quat a, Quat b, double t) {
 Quat quat_from_matrix(const std::array<std::array<double, 3>, 3>& m);
 std::array<std::array<double, 3>, 3> matrix_from_quat(Quat q);
 
-}  // namespace tressvk::reference
+}  // namespace tressvk::model

@@ -15,7 +15,7 @@
 #include "tressvk/model/gpu_layout.hpp"
 #include "tressvk/model/math.hpp"
 
-namespace tressvk::reference {
+namespace tressvk::model {
 
 // An edge arriving at v drives the frame only if it is at least this fraction of the edge leaving v (so a frame
 // direction error from float rounding, delta/|e_in|, moves the next target by at most delta/kFrameEdgeRatio),
@@ -92,4 +92,4 @@ GpuStatic build_gpu_static(const ModelRest& rest);
 // Median of the guides' rest lengths: the normalisation of every error metric.
 double median_strand_length(const ModelRest& rest);
 
-}  // namespace tressvk::reference
+}  // namespace tressvk::model

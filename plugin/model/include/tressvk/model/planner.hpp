@@ -24,7 +24,7 @@
 #include "tressvk/model/math.hpp"
 #include "tressvk/sim_types.h"
 
-namespace tressvk::reference {
+namespace tressvk::model {
 
 // An affine map asset space -> simulation space (rows of a 3x4), with its rotation as a quaternion.
 struct SkinTransform {
@@ -154,4 +154,4 @@ struct GpuFrame {
 GpuFrame to_gpu(const FramePlan& plan);
 sim::GroupParams to_gpu(const GroupStep& group);
 
-}  // namespace tressvk::reference
+}  // namespace tressvk::model

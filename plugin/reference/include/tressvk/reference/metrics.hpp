@@ -13,6 +13,9 @@
 
 namespace tressvk::reference {
 
+// The reference is written in the runtime model's terms (planner, rest data, math: tressvk::model).
+using namespace tressvk::model;
+
 inline Vec3 as_vec3(const Vec3& v) { return v; }
 inline Vec3 as_vec3(const sim::Vec4& v) { return {v[0], v[1], v[2]}; }
 inline Vec3 as_vec3(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }

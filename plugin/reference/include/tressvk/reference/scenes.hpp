@@ -23,6 +23,9 @@
 
 namespace tressvk::reference {
 
+// The reference is written in the runtime model's terms (planner, rest data, math: tressvk::model).
+using namespace tressvk::model;
+
 struct SceneGeometry {
   Vec3 head_centre;        // instance space
   double head_radius = 0;  // m

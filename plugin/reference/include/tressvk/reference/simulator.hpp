@@ -20,6 +20,9 @@
 
 namespace tressvk::reference {
 
+// The reference is written in the runtime model's terms (planner, rest data, math: tressvk::model).
+using namespace tressvk::model;
+
 class Simulator {
  public:
   // group_params: one per strand group of the asset (a single entry is used for every group).
