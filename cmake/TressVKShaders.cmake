@@ -27,7 +27,7 @@ function(tressvk_embed_shaders target)
       OUTPUT "${out}"
       COMMAND "${CMAKE_COMMAND}" -E make_directory "${out_dir}"
       COMMAND Vulkan::glslangValidator --target-env vulkan1.2 --quiet --spirv-val ${debug_info}
-              "-I${TRESSVK_SHADER_DIR}" --depfile "${out}.d" --vn "k_spv_${ident}" -o "${out}" "${abs}"
+              "-I${TRESSVK_SHADER_DIR}" "-I${PROJECT_SOURCE_DIR}/plugin/model/include" --depfile "${out}.d" --vn "k_spv_${ident}" -o "${out}" "${abs}"
       DEPENDS "${abs}"
       DEPFILE "${out}.d"
       COMMENT "Compiling shader ${name}"

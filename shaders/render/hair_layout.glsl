@@ -2,6 +2,8 @@
 // simulation's storage buffers. Must match DrawConstants in plugin/src/render/constants.hpp.
 #extension GL_EXT_control_flow_attributes : enable
 
+#include "tressvk/model/gpu_layout.h"  // bindings and limits, shared with C++
+
 struct Light {
   vec4 position;   // xyz: relative to the instance origin (spot); w: type (0 directional, 1 spot)
   vec4 direction;  // xyz: unit direction the light travels; w: range (m, 0 = none)
@@ -17,7 +19,7 @@ struct Material {
   vec4 fiber;      // x: fibre spacing (strand widths), y: fibre alpha, z: colour variation
 };
 
-layout(std140, set = 0, binding = 0) uniform DrawConstants {
+layout(std140, set = 0, binding = TVK_DRAW_BINDING_CONSTANTS) uniform DrawConstants {
   mat4 view_proj;      // simulation space -> clip (camera, or the light for the shadow pass)
   mat4 shadow_proj;    // simulation space -> light clip (shading pass, shadowed)
   vec4 eye;            // xyz: eye relative to the origin; w: 1 = orthographic view
@@ -27,11 +29,11 @@ layout(std140, set = 0, binding = 0) uniform DrawConstants {
   vec4 lod;            // x: width scale (LOD), y: margin in pixels around the strand, z: minimum half width (px)
   vec4 shadow_params;  // x: near, y: far (m), z: 1 = perspective light, w: unused
   vec4 ambient;        // rgb
-  Light lights[8];
-  Material materials[16];
+  Light lights[TVK_DRAW_MAX_LIGHTS];
+  Material materials[TVK_DRAW_MAX_MATERIALS];
 } dc;
 
-layout(std430, set = 0, binding = 1) readonly buffer Positions { vec4 positions[]; };  // offsets from the anchors
-layout(std430, set = 0, binding = 2) readonly buffer Tangents { vec4 tangents[]; };
-layout(std430, set = 0, binding = 3) readonly buffer GuideInfo { uvec4 guide_info[]; };  // x: strand group
-layout(std430, set = 0, binding = 4) readonly buffer Anchors { vec4 anchors[]; };  // per guide, simulation space
+layout(std430, set = 0, binding = TVK_DRAW_BINDING_POSITIONS) readonly buffer Positions { vec4 positions[]; };  // offsets from the anchors
+layout(std430, set = 0, binding = TVK_DRAW_BINDING_TANGENTS) readonly buffer Tangents { vec4 tangents[]; };
+layout(std430, set = 0, binding = TVK_DRAW_BINDING_GUIDE_INFO) readonly buffer GuideInfo { uvec4 guide_info[]; };  // x: strand group
+layout(std430, set = 0, binding = TVK_DRAW_BINDING_ANCHORS) readonly buffer Anchors { vec4 anchors[]; };  // per guide, simulation space

@@ -9,7 +9,7 @@ layout(constant_id = 0) const uint kPass = 0u;
 const float kCoreCoverage = 0.98;
 
 #ifdef TVK_SHADOWED
-layout(set = 0, binding = 5) uniform sampler2D shadow_map;
+layout(set = 0, binding = TVK_DRAW_BINDING_SHADOW_MAP) uniform sampler2D shadow_map;
 #endif
 
 layout(location = 0) in vec3 i_position;

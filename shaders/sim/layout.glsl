@@ -21,24 +21,28 @@
 #ifndef TRESSVK_SIM_LAYOUT_GLSL
 #define TRESSVK_SIM_LAYOUT_GLSL
 
+// Binding numbers, constant ids, feature bits, TVK_BLOCK, TVK_SKIN_VEC4, TVK_STEP_*: one definition for GLSL and C++.
+#include "tressvk/model/gpu_layout.h"
+#if TVK_SPEC_WORKGROUP_SIZE != 0 || TVK_SPEC_VERTICES_PER_STRAND != 1 || TVK_SPEC_FOLLOW_PER_GUIDE != 2 || \
+    TVK_SPEC_FEATURES != 3 || TVK_SPEC_CAPSULE_COUNT != 4 || TVK_BINDING_POSITIONS != 0 || \
+    TVK_BINDING_PREV_POSITIONS != 1 || TVK_BINDING_PREV_PREV_POSITIONS != 2 || TVK_BINDING_TANGENTS != 3 || \
+    TVK_BINDING_REST_POSITIONS != 4 || TVK_BINDING_REST_INFO != 5 || TVK_BINDING_REST_EDGE_LOCAL != 6 || \
+    TVK_BINDING_ROOT_FRAMES != 7 || TVK_BINDING_FOLLOW_OFFSETS != 8 || TVK_BINDING_GUIDE_INFO != 9 || \
+    TVK_BINDING_BONE_INDICES != 10 || TVK_BINDING_BONE_WEIGHTS != 11 || TVK_BINDING_SKIN != 12 || \
+    TVK_BINDING_GROUPS != 13 || TVK_BINDING_STEPS != 14 || TVK_BINDING_COUNTERS != 15 || TVK_BINDING_ANCHORS != 16
+#error "layout.glsl's constant ids or bindings differ from tressvk/model/gpu_layout.h"
+#endif
+
 // ---- specialization constants (one pipeline per combination that a scene uses) -------------------------
 layout(constant_id = 0) const uint WORKGROUP_SIZE = 64;   // used with local_size_x_id = 0; any size works
 layout(constant_id = 1) const uint N = 32;                // vertices per strand (4..128)
 layout(constant_id = 2) const uint K = 0;                 // follow hairs per guide
-layout(constant_id = 3) const uint FEATURES = 0;          // TVK_FEATURE_* bits below
+layout(constant_id = 3) const uint FEATURES = 0;          // TVK_FEATURE_* bits (gpu_layout.h)
 layout(constant_id = 4) const uint CAPSULE_COUNT = 0;     // 0..8, capsules tested by the length pass
-
-#define TVK_FEATURE_GLOBAL_SHAPE 1u  // integrate: pull toward the skinned rest pose
-#define TVK_FEATURE_WIND 2u          // length: wind displacement
-#define TVK_FEATURE_COLLISION 4u     // length: capsule collision (CAPSULE_COUNT capsules)
-#define TVK_FEATURE_SKINNING 8u      // bone weights blended (otherwise one rigid transform: bone 0)
-#define TVK_FEATURE_MAX_SPEED 16u    // length: velocity clamp
-#define TVK_FEATURE_PINNED_TIPS 32u  // length: strands pinned at both ends (the tridiagonal length solve)
 
 #define TVK_HAS(bit) ((FEATURES & (bit)) != 0u)
 
-// ---- vertex layout (mirrored by kStrandBlock / vertex_index in gpu_layout.hpp and TVK_STRAND_BLOCK in tressvk.h) ---
-#define TVK_BLOCK 32u
+// ---- vertex layout (TVK_BLOCK and TVK_VERTEX_INDEX in gpu_layout.h; TVK_STRAND_BLOCK in tressvk.h) ---
 uint strand_base(uint s) { return (s / TVK_BLOCK) * (TVK_BLOCK * N) + s % TVK_BLOCK; }
 uint vertex_index(uint s, uint v) { return strand_base(s) + v * TVK_BLOCK; }
 // The strand and vertex of element i of a per-vertex buffer (for one-thread-per-vertex passes, thread i = element i).
@@ -54,7 +58,7 @@ layout(std430, set = 0, binding = 1) buffer PrevPositions { vec4 prev[]; };   //
 layout(std430, set = 0, binding = 2) buffer PrevPrevPositions { vec4 prevprev[]; };  // padded(G)*N, two steps back (VSP)
 layout(std430, set = 0, binding = 3) buffer Tangents { vec4 tangent[]; };     // padded(G*(K+1))*N; xyz unit, w = 0
 
-// ---- per-asset static data (shared by every instance of an asset; built by reference::build_gpu_static) ---
+// ---- per-asset static data (shared by every instance of an asset; built by model::build_gpu_static) ---
 // v = 0: the root in asset space (relative to the asset origin); v > 0: the offset from the root. w = inverse mass.
 layout(std430, set = 0, binding = 4) readonly buffer RestPositions { vec4 rest_pos[]; };  // padded(G)*N
 // x: rest length of edge v->v+1 (0 for v = N-1); y: rest arc length of v from the root / strand rest length;
@@ -77,7 +81,6 @@ layout(std430, set = 0, binding = 11) readonly buffer BoneWeights { vec4 bone_we
 // previous step's [4], in this step's frame (turned with a teleport or carry; identity after a reset); [6..8] rows of
 // the map's change since the previous step (this map minus the previous one carried into this step's frame; zero at
 // a reset): applied to a rest root, the move of that guide's anchor.
-#define TVK_SKIN_VEC4 9u
 layout(std430, set = 0, binding = 12) readonly buffer Skin { vec4 skin[]; };
 
 struct GroupParams {            // per strand group; std430, 48 bytes. Everything already per step (h folded in).
@@ -106,9 +109,6 @@ struct StepParams {             // per substep; std430, 640 bytes. Everything in
   vec4 capsule_move[16];        // capsule c: [2c].xyz = move of p0 since the last step, [2c+1].xyz = of p1
 };
 layout(std430, set = 0, binding = 14) readonly buffer Steps { StepParams step_params[]; };
-
-#define TVK_STEP_RESET 1u       // put every strand at its skinned rest pose with zero velocity
-#define TVK_STEP_MOVE_STATE 2u  // turn pos/prev/prevprev by the teleport before integrating
 
 // Counters the host reads back now and then: [pc.counter_index] strands reset after going non-finite.
 layout(std430, set = 0, binding = 15) buffer Counters { uint counters[]; };

@@ -186,11 +186,15 @@ TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* fra
 /* The simulated state, for hosts that draw or read it themselves. Per-vertex buffers hold strands in blocks of
  * TVK_STRAND_BLOCK, vertex-major within a block (so that GPU threads walking neighbouring strands read neighbouring
  * addresses): vertex v of rendered strand s (guides first, then follow layers) is element
- *   i = (s / TVK_STRAND_BLOCK) * TVK_STRAND_BLOCK * vertices_per_strand + v * TVK_STRAND_BLOCK + s % TVK_STRAND_BLOCK
+ *   i = tvk_vertex_index(s, v, vertices_per_strand)
  * and lies at anchors[s % guide_count].xyz + positions[i].xyz in simulation space (world axes, origin at `origin`),
  * at origin + that in the world. Positions are kept relative to each guide's anchor (its skinned root) so that
  * float32 rounding is relative to the strand, not to the character. Buffers hold whole blocks. */
 #define TVK_STRAND_BLOCK 32u
+static inline uint64_t tvk_vertex_index(uint64_t strand, uint64_t vertex, uint64_t vertices_per_strand) {
+  return strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * vertices_per_strand + vertex * TVK_STRAND_BLOCK +
+         strand % TVK_STRAND_BLOCK;
+}
 typedef struct TvkInstanceBuffers {
   VkBuffer positions;                /* vec4 per vertex of every rendered strand (guides, then follow layers): xyz the
                                         offset from the strand's anchor, w = inverse mass */

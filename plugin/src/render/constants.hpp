@@ -2,6 +2,7 @@
 // shaders/render/hair_layout.glsl (every member a vec4 or mat4, so std140 adds no padding).
 #pragma once
 
+#include <tressvk/model/gpu_layout.h>
 #include <tressvk/render.h>
 
 #include <array>
@@ -37,6 +38,7 @@ struct alignas(16) DrawConstants {
   GpuLight lights[TVK_MAX_LIGHTS];
   GpuMaterial materials[TVK_MAX_MATERIALS];
 };
+static_assert(TVK_DRAW_MAX_LIGHTS == TVK_MAX_LIGHTS && TVK_DRAW_MAX_MATERIALS == TVK_MAX_MATERIALS);
 static_assert(sizeof(GpuLight) == 64 && sizeof(GpuMaterial) == 80);
 static_assert(sizeof(DrawConstants) == 2 * 64 + 7 * 16 + TVK_MAX_LIGHTS * 64 + TVK_MAX_MATERIALS * 80);
 

@@ -38,7 +38,8 @@ struct TvkRenderer_T {
   uint32_t max_draws = 64;
   VkDeviceSize block_stride = 0;  // DrawConstants rounded up to minUniformBufferOffsetAlignment
 
-  // Set 0: bindings 0 (constants), 1 positions, 2 tangents, 3 guide info; the shadowed layout adds 4 (shadow map).
+  // Set 0 (TVK_DRAW_BINDING_*, gpu_layout.h): 0 constants, 1 positions, 2 tangents, 3 guide info, 4 anchors; the
+  // shadowed layout adds 5 (shadow map).
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   VkDescriptorSetLayout shadowed_set_layout = VK_NULL_HANDLE;
   VkPipelineLayout pipeline_layout = VK_NULL_HANDLE;

@@ -58,9 +58,7 @@ inline HairState read_hair_state(const engine::Device& device, TvkInstance insta
   s.anchors = engine::read_buffer_as<Vec4>(device, copies[4], sizes[4] / sizeof(Vec4));
   const size_t n = b.vertices_per_strand, guides = b.guide_count;
   // Element of vertex v of strand s in the GPU's blocked layout (tressvk.h, TvkInstanceBuffers).
-  const auto element = [n](size_t strand, size_t v) {
-    return strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * n + v * TVK_STRAND_BLOCK + strand % TVK_STRAND_BLOCK;
-  };
+  const auto element = [n](size_t strand, size_t v) { return static_cast<size_t>(tvk_vertex_index(strand, v, n)); };
   const auto absolute = [&](const std::vector<Vec4>& blocked, size_t strands) {
     std::vector<std::array<double, 3>> out(strands * n);
     for (size_t strand = 0; strand < strands; ++strand) {
