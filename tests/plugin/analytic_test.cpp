@@ -125,32 +125,10 @@ TEST_CASE("analytic GPU: a strand pinned at both ends keeps its segment lengths"
 
 // A6 on the GPU: tilt atan(w/g) within 0.5 degrees, every vertex within 1e-3 L of the line.
 TEST_CASE("analytic GPU: steady wind tilts a hanging strand by atan(w/g)", "[plugin][analytic]") {
-  std::vector<Vec3> pts;
-  for (uint32_t v = 0; v < 32; ++v) pts.push_back({0, -0.3 * v / 31.0, 0});
-  TvkSimParams p = chain_params();
-  p.damping = 0.3f;
-  auto run = gpu_factory()(strand_asset(pts, 1), p, settings_at(240.0));
-  TvkSimFrame f = still_frame();
-  f.wind.direction[0] = 1;
-  f.wind.direction[1] = 0;
-  f.wind.direction[2] = 0;
-  f.wind.strength = 4.0f;
-  f.wind.gust_amplitude = 0.0f;
-  f.wind.cone_angle = 0.0f;
-  for (uint32_t i = 0; i < 600; ++i) run->frame(f);
-  const std::vector<Vec3> x = run->positions();
-  const Vec3 d = x.back() - x.front();
-  const double angle = std::atan2(d.x, -d.y) * 180.0 / std::numbers::pi;
-  const double expect = std::atan(4.0 / 9.81) * 180.0 / std::numbers::pi;
-  const Vec3 u = normalize(d);
-  double off = 0;
-  for (const Vec3& v : x) {
-    const Vec3 r = v - x.front();
-    off = std::max(off, length(r - dot(r, u) * u));
-  }
-  INFO("tilt " << angle << " deg, expected " << expect << "; off the line " << off / 0.3 << " L");
-  CHECK(std::abs(angle - expect) <= 0.5);
-  CHECK(off <= 1e-3 * 0.3);
+  const WindTilt t = wind_tilt(gpu_factory());
+  INFO("tilt " << t.angle_deg << " deg, expected " << t.expected_deg << "; off the line " << t.off_line / 0.3 << " L");
+  CHECK(std::abs(t.angle_deg - t.expected_deg) <= 0.5);
+  CHECK(t.off_line <= 1e-3 * 0.3);
 }
 
 // A7 on the GPU: nothing pinned, every vertex falls g h^2 n (n + 1) / 2 (see the reference's test) over 0.25 s. In
@@ -158,25 +136,7 @@ TEST_CASE("analytic GPU: steady wind tilts a hanging strand by atan(w/g)", "[plu
 // the position as n^2 / 2 ulps: at most 5e-5 m over these 60 steps, 1.7e-4 of the fall; 1e-4 allows the typical
 // (partly cancelling) case with room, and measured 1.8e-5 on lavapipe.
 TEST_CASE("analytic GPU: a free strand falls freely", "[plugin][analytic]") {
-  std::vector<Vec3> pts;
-  for (uint32_t v = 0; v < 16; ++v) pts.push_back({0.02 * v, 0.001 * v * v, 0});
-  auto run = gpu_factory()(strand_asset(pts, 0), chain_params(), settings_at(240.0));
-  run->frame(still_frame());
-  const std::vector<Vec3> x0 = run->positions();
-  uint64_t steps = 4;
-  for (uint32_t f = 1; f < 15; ++f) {
-    run->frame(still_frame());
-    steps += 4;
-  }
-  const std::vector<Vec3> x = run->positions();
-  const double h = 1.0 / 240.0;
-  auto fall = [&](uint64_t n) { return 9.81f * h * h * static_cast<double>(n * (n + 1)) / 2.0; };
-  const double expect = fall(steps) - fall(4);
-  double worst = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    worst = std::max(worst, std::abs((x0[i].y - x[i].y) - expect) / expect);
-    worst = std::max(worst, std::abs(x0[i].x - x[i].x) / expect);
-  }
-  INFO("fell " << x0[0].y - x[0].y << " m, expected " << expect << "; worst relative error " << worst);
-  CHECK(worst <= 1e-4);
+  const FreeFall f = free_fall(gpu_factory(), 15);
+  INFO("fell " << f.fell << " m, expected " << f.expected << "; worst relative error " << f.worst);
+  CHECK(f.worst <= 1e-4);
 }

@@ -221,6 +221,75 @@ inline RunFactory reference_factory() {
 }
 
 // Upward zero crossings of a sampled signal (linear interpolation), after subtracting its mean.
+// ---- The analytic scenarios the reference and the GPU both run (test_analytic.cpp, ../analytic_test.cpp) ---------
+
+// A6. A straight 0.3 m chain of 32 vertices in a steady wind of 4 m/s^2 (no gusts, no cone), damped, 10 s at 240 Hz:
+// its tilt from the vertical (degrees), the expected atan(w/g), and the farthest vertex from the straight line (m).
+struct WindTilt {
+  double angle_deg = 0;
+  double expected_deg = 0;
+  double off_line = 0;
+};
+inline WindTilt wind_tilt(const RunFactory& make) {
+  std::vector<Vec3> pts;
+  for (uint32_t v = 0; v < 32; ++v) pts.push_back({0, -0.3 * v / 31.0, 0});
+  TvkSimParams p = chain_params();
+  p.damping = 0.3f;
+  auto run = make(strand_asset(pts, 1), p, settings_at(240.0));
+  TvkSimFrame f = still_frame();
+  f.wind.direction[0] = 1;
+  f.wind.direction[1] = 0;
+  f.wind.direction[2] = 0;
+  f.wind.strength = 4.0f;
+  f.wind.gust_amplitude = 0.0f;
+  f.wind.cone_angle = 0.0f;
+  for (uint32_t i = 0; i < 600; ++i) run->frame(f);
+  const std::vector<Vec3> x = run->positions();
+  const Vec3 d = x.back() - x.front();
+  WindTilt out;
+  out.angle_deg = std::atan2(d.x, -d.y) * 180.0 / std::numbers::pi;
+  out.expected_deg = std::atan(4.0 / kG) * 180.0 / std::numbers::pi;
+  const Vec3 u = normalize(d);
+  for (const Vec3& v : x) {
+    const Vec3 r = v - x.front();
+    out.off_line = std::max(out.off_line, length(r - dot(r, u) * u));
+  }
+  return out;
+}
+
+// A7. A free 16-vertex strand (nothing pinned, VSP off) falls from rest for `frames` frames at 240 Hz. Verlet
+// integrates constant gravity as x_n = x_0 + g h^2 n (n + 1) / 2; the positions after the first frame (the reset
+// step, then 4 steps) are compared with the end: the worst error of any vertex's fall relative to the expected fall.
+struct FreeFall {
+  double fell = 0;      // m, vertex 0
+  double expected = 0;  // m
+  double worst = 0;     // relative
+};
+inline FreeFall free_fall(const RunFactory& make, uint32_t frames) {
+  std::vector<Vec3> pts;
+  for (uint32_t v = 0; v < 16; ++v) pts.push_back({0.02 * v, 0.001 * v * v, 0});
+  auto run = make(strand_asset(pts, 0), chain_params(), settings_at(240.0));
+  run->frame(still_frame());
+  const std::vector<Vec3> x0 = run->positions();
+  uint64_t steps = 4;
+  for (uint32_t f = 1; f < frames; ++f) {
+    run->frame(still_frame());
+    steps += 4;
+  }
+  const std::vector<Vec3> x = run->positions();
+  const double h = 1.0 / 240.0;
+  // x0 was taken after 4 steps: the fall between is the difference of the discrete solutions.
+  auto fall = [&](uint64_t n) { return 9.81f * h * h * static_cast<double>(n * (n + 1)) / 2.0; };
+  FreeFall out;
+  out.expected = fall(steps) - fall(4);
+  out.fell = x0[0].y - x[0].y;
+  for (size_t i = 0; i < x.size(); ++i) {
+    out.worst = std::max(out.worst, std::abs((x0[i].y - x[i].y) - out.expected) / out.expected);
+    out.worst = std::max(out.worst, std::abs(x0[i].x - x[i].x) / out.expected);
+  }
+  return out;
+}
+
 inline std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& x) {
   double mean = 0;
   for (double v : x) mean += v;

@@ -115,60 +115,19 @@ TEST_CASE("analytic: a strand pinned at both ends hangs as the catenary", "[refe
 // only, so the equilibrium is where gravity + wind lies along the strand. 0.5 degrees, and every vertex within
 // 1e-3 L of the straight line (damping settles it; 10 s).
 TEST_CASE("analytic: steady wind tilts a hanging strand by atan(w/g)", "[reference][analytic]") {
-  std::vector<Vec3> pts;
-  for (uint32_t v = 0; v < 32; ++v) pts.push_back({0, -0.3 * v / 31.0, 0});
-  TvkSimParams p = chain_params();
-  p.damping = 0.3f;
-  auto run = reference_factory()(strand_asset(pts, 1), p, settings_at(240.0));
-  TvkSimFrame f = still_frame();
-  f.wind.direction[0] = 1;
-  f.wind.direction[1] = 0;
-  f.wind.direction[2] = 0;
-  f.wind.strength = 4.0f;
-  f.wind.gust_amplitude = 0.0f;
-  f.wind.cone_angle = 0.0f;
-  for (uint32_t i = 0; i < 600; ++i) run->frame(f);
-  const std::vector<Vec3> x = run->positions();
-  const Vec3 d = x.back() - x.front();
-  const double angle = std::atan2(d.x, -d.y) * 180.0 / std::numbers::pi;
-  const double expect = std::atan(4.0 / 9.81) * 180.0 / std::numbers::pi;
-  const Vec3 u = normalize(d);
-  double off = 0;
-  for (const Vec3& v : x) {
-    const Vec3 r = v - x.front();
-    off = std::max(off, length(r - dot(r, u) * u));
-  }
-  INFO("tilt " << angle << " deg, expected " << expect << "; off the line " << off / 0.3 << " L");
-  CHECK(std::abs(angle - expect) <= 0.5);
-  CHECK(off <= 1e-3 * 0.3);
+  const WindTilt t = wind_tilt(reference_factory());
+  INFO("tilt " << t.angle_deg << " deg, expected " << t.expected_deg << "; off the line " << t.off_line / 0.3 << " L");
+  CHECK(std::abs(t.angle_deg - t.expected_deg) <= 0.5);
+  CHECK(t.off_line <= 1e-3 * 0.3);
 }
 
 // A7. Nothing pinned, VSP off: every vertex falls as Verlet integrates constant gravity from rest, x_n = x_0 +
 // g h^2 n (n + 1) / 2 (the continuous x_0 + g t^2 / 2 plus the scheme's constant-velocity offset g h t / 2, which
 // comes from starting with p - q = 0), to 1e-9 relative in double; the segments keep their length exactly.
 TEST_CASE("analytic: a free strand falls freely", "[reference][analytic]") {
-  std::vector<Vec3> pts;
-  for (uint32_t v = 0; v < 16; ++v) pts.push_back({0.02 * v, 0.001 * v * v, 0});
-  auto run = reference_factory()(strand_asset(pts, 0), chain_params(), settings_at(240.0));
-  run->frame(still_frame());  // reset frame: the reset step, then 4 steps
-  const std::vector<Vec3> x0 = run->positions();
-  uint64_t steps = 4;
-  for (uint32_t f = 1; f < 60; ++f) {
-    run->frame(still_frame());
-    steps += 4;
-  }
-  const std::vector<Vec3> x = run->positions();
-  const double h = 1.0 / 240.0;
-  // x0 was taken after 4 steps: the fall between is the difference of the discrete solutions.
-  auto fall = [&](uint64_t n) { return 9.81f * h * h * static_cast<double>(n * (n + 1)) / 2.0; };
-  const double expect = fall(steps) - fall(4);
-  double worst = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    worst = std::max(worst, std::abs((x0[i].y - x[i].y) - expect) / expect);
-    worst = std::max(worst, std::abs(x0[i].x - x[i].x) / expect);
-  }
-  INFO("fell " << x0[0].y - x[0].y << " m, expected " << expect << "; worst relative error " << worst);
-  CHECK(worst <= 1e-9);
+  const FreeFall f = free_fall(reference_factory(), 60);
+  INFO("fell " << f.fell << " m, expected " << f.expected << "; worst relative error " << f.worst);
+  CHECK(f.worst <= 1e-9);
 }
 
 // The converged reference: the same model stepped ever finer (on the CPU, beyond the GPU's 480 Hz) must stop
