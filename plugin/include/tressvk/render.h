@@ -145,6 +145,11 @@ TVK_API TvkResult tressvk_create_renderer(TvkContext context, const TvkRendererC
  * before their context. To resize, nothing is needed (sizes come with each TvkView); to change formats, create a
  * new renderer. */
 TVK_API void tressvk_destroy_renderer(TvkRenderer renderer);
+/* Builds every pipeline the renderer's calls can use (the rasterised passes, the compute rasterizer and its
+ * composite, and the shadow passes when a shadow target was given) ahead of the first frame, as FidelityFX builds its
+ * pipelines at context creation; otherwise each is built by the first call that needs it (15 ms of the first draw on
+ * lavapipe). Records nothing; optional. */
+TVK_API TvkResult tressvk_prewarm_renderer(TvkRenderer renderer);
 
 /* Draws hair depth into the host's shadow map (inside the host's depth-only pass). */
 TVK_API TvkResult tressvk_cmd_draw_shadow(TvkRenderer renderer, VkCommandBuffer command_buffer,

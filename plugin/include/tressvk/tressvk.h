@@ -183,6 +183,12 @@ TVK_API TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSet
  * whose frame was not set since its last simulation keeps its pose and advances no time (dt 0). */
 TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame);
 
+/* Builds ahead of time the compute pipelines that simulating `frame` will use (NULL: the frame last given to
+ * tressvk_set_frame), so that the first tressvk_cmd_simulate does not build them (36 ms on lavapipe). Pipelines depend
+ * on the asset's strand size, the instance's parameters and which terms the frame has (wind, capsules, bones);
+ * call it after the parameters are set, e.g. at load time with the first frame. Records nothing; optional. */
+TVK_API TvkResult tressvk_prewarm_instance(TvkInstance instance, const TvkSimFrame* frame);
+
 /* The simulated state, for hosts that draw or read it themselves. Per-vertex buffers hold strands in blocks of
  * TVK_STRAND_BLOCK, vertex-major within a block (so that GPU threads walking neighbouring strands read neighbouring
  * addresses): vertex v of rendered strand s (guides first, then follow layers) is element

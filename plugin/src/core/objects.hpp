@@ -65,5 +65,7 @@ inline bool is_dynamic_binding(uint32_t b) {
 // Creates (once) the descriptor set layout and pipeline layout shared by every simulation pipeline.
 TvkResult ensure_sim_layouts(Context& ctx);
 void destroy_sim_objects(Context& ctx);
+// Builds the simulation pipelines that simulating `frame` would use for `inst` (tressvk_prewarm_instance).
+TvkResult prewarm_sim_pipelines(Context& ctx, const TvkInstance_T& inst, const TvkSimFrame& frame);
 
 }  // namespace tressvk

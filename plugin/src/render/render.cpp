@@ -1,6 +1,7 @@
 // TvkRenderer: creation, destruction and pipeline building (on first use). The recording calls are in
-// render_draw.cpp.
+// draw.cpp.
 #include "render/render.hpp"
+#include "render/compute/state.hpp"
 
 #include "tressvk_render_spirv.h"
 
@@ -238,6 +239,26 @@ void tressvk_destroy_renderer(TvkRenderer renderer) {
   if (!renderer) return;
   renderer->destroy();
   delete renderer;
+}
+
+TvkResult tressvk_prewarm_renderer(TvkRenderer renderer) {
+  if (!renderer)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_prewarm_renderer: renderer is NULL");
+  TvkRenderer_T& r = *renderer;
+  return tressvk::guarded(*r.ctx, "tressvk_prewarm_renderer", [&]() -> TvkResult {
+    using tressvk::render::PipelineKind;
+    const bool shadow = r.info.shadow.depth_format != VK_FORMAT_UNDEFINED;
+    for (PipelineKind kind : {PipelineKind::shadow, PipelineKind::core, PipelineKind::fringe,
+                              PipelineKind::core_shadowed, PipelineKind::fringe_shadowed}) {
+      if ((kind == PipelineKind::shadow && !shadow) || r.pipelines[static_cast<size_t>(kind)]) continue;
+      if (TvkResult res = tressvk::render::create_pipeline(r, kind); res != TVK_SUCCESS) return res;
+    }
+    if (TvkResult res = tressvk::render::compute::ensure_pipelines(r); res != TVK_SUCCESS) return res;
+    if (TvkResult res = tressvk::render::compute::ensure_composite_pipeline(r); res != TVK_SUCCESS) return res;
+    if (shadow)
+      if (TvkResult res = tressvk::render::compute::ensure_shadow_pipeline(r); res != TVK_SUCCESS) return res;
+    return TVK_SUCCESS;
+  });
 }
 
 uint32_t tressvk_get_last_drawn_strands(TvkRenderer renderer) { return renderer ? renderer->last_drawn_strands : 0u; }

@@ -220,6 +220,22 @@ TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
   return TVK_SUCCESS;
 }
 
+TvkResult tressvk_prewarm_instance(TvkInstance instance, const TvkSimFrame* frame) {
+  if (!instance)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_prewarm_instance: instance is NULL");
+  Context& ctx = *instance->ctx;
+  return tressvk::guarded(ctx, "tressvk_prewarm_instance", [&]() -> TvkResult {
+    if (frame) {
+      try {
+        tressvk::model::validate_frame(*frame, instance->asset->rest.bone_count);
+      } catch (const std::exception& e) {
+        return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_prewarm_instance: %s", e.what());
+      }
+    }
+    return tressvk::prewarm_sim_pipelines(ctx, *instance, frame ? *frame : instance->frame);
+  });
+}
+
 TvkResult tressvk_get_instance_buffers(TvkInstance instance, TvkInstanceBuffers* out) {
   if (!instance)
     return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_instance_buffers: instance is NULL");

@@ -186,6 +186,20 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
 }
 
 }  // namespace
+
+TvkResult prewarm_sim_pipelines(Context& ctx, const TvkInstance_T& inst, const TvkSimFrame& frame) {
+  if (TvkResult r = ensure_sim_layouts(ctx); r != TVK_SUCCESS) return r;
+  const auto& rest = inst.asset->rest;
+  const sim::SceneTerms terms =
+      sim::scene_terms(inst.params, frame, rest.follow_per_guide, rest.pinned_tip_strands > 0);
+  for (const PassUse& use : sim::passes_for(terms)) {
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    if (TvkResult r = get_pipeline(ctx, use, rest.vertices_per_strand, rest.follow_per_guide, pipeline);
+        r != TVK_SUCCESS)
+      return r;
+  }
+  return TVK_SUCCESS;
+}
 }  // namespace tressvk
 
 extern "C" {

@@ -51,7 +51,7 @@
 #define TVK_SKIN_VEC4 9u        // vec4 per (substep, bone) in the Skin buffer
 #define TVK_STEP_RESET 1u       // StepParams.flags.x: put every strand at its skinned rest pose with zero velocity
 #define TVK_STEP_MOVE_STATE 2u  // StepParams.flags.x: turn pos/prev/prevprev by the teleport before integrating
-#define TVK_MAX_CAPSULES 8u     // capsules per instance (StepParams holds 2 vec4 each)
+#define TVK_STEP_MAX_CAPSULES 8u  // capsules per instance (StepParams holds 2 vec4 each) = TVK_MAX_CAPSULES (sim_types.h)
 
 // ---- rendering (the rasterised hair passes): descriptor set 0 and the limits of DrawConstants --------------
 #define TVK_DRAW_BINDING_CONSTANTS 0

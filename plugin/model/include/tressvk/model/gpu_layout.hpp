@@ -8,6 +8,7 @@
 #pragma once
 
 #include "tressvk/model/gpu_layout.h"
+#include "tressvk/sim_types.h"
 
 #include <array>
 #include <cstddef>
@@ -69,7 +70,8 @@ constexpr uint64_t vertex_index(uint64_t strand, uint64_t v, uint64_t n) {
 
 inline constexpr uint32_t kStepReset = TVK_STEP_RESET;       // StepParams::flags[0] bits
 inline constexpr uint32_t kStepMoveState = TVK_STEP_MOVE_STATE;
-inline constexpr uint32_t kMaxCapsules = TVK_MAX_CAPSULES;
+inline constexpr uint32_t kMaxCapsules = TVK_STEP_MAX_CAPSULES;
+static_assert(kMaxCapsules == TVK_MAX_CAPSULES);
 inline constexpr uint32_t kSkinVec4PerBone = TVK_SKIN_VEC4;  // 3 affine rows, rotation, rotation since the last step, the
                                                   // previous step's rotation since the one before, 3 rows of the
                                                   // map's change since the last step (the anchors' move)
