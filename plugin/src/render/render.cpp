@@ -2,6 +2,7 @@
 // draw.cpp.
 #include "render/render.hpp"
 #include "render/compute/state.hpp"
+#include "core/pipelines.hpp"
 
 #include "tressvk_render_spirv.h"
 
@@ -40,124 +41,25 @@ TvkResult make_pipeline_layout(Context& ctx, VkDescriptorSetLayout set, VkPipeli
                    "vkCreatePipelineLayout (hair)");
 }
 
-template <size_t N>
-TvkResult make_module(Context& ctx, const uint32_t (&code)[N], VkShaderModule& out) {
-  VkShaderModuleCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-  ci.codeSize = sizeof(code);
-  ci.pCode = code;
-  return ctx.check(ctx.vk.vkCreateShaderModule(ctx.info.device, &ci, ctx.info.allocator, &out),
-                   "vkCreateShaderModule (hair)");
-}
-
 }  // namespace
 
 TvkResult create_pipeline(TvkRenderer_T& r, PipelineKind kind) {
-  Context& ctx = *r.ctx;
   const bool shadow = kind == PipelineKind::shadow;
   const bool shadowed = kind == PipelineKind::core_shadowed || kind == PipelineKind::fringe_shadowed;
   const bool fringe = kind == PipelineKind::fringe || kind == PipelineKind::fringe_shadowed;
-  const TvkRenderTarget& target = shadow ? r.info.shadow : r.info.shading;
-
-  VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
-  TvkResult res = shadow ? make_module(ctx, k_spv_hair_shadow_vert, vs) : make_module(ctx, k_spv_hair_vert, vs);
-  if (res == TVK_SUCCESS && !shadow)
-    res = shadowed ? make_module(ctx, k_spv_hair_shadowed_frag, fs) : make_module(ctx, k_spv_hair_frag, fs);
-  if (res != TVK_SUCCESS) {
-    if (vs) ctx.vk.vkDestroyShaderModule(ctx.info.device, vs, ctx.info.allocator);
-    return res;
-  }
-
-  const uint32_t pass = fringe ? 1u : 0u;
-  const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
-  VkSpecializationInfo spec{};
-  spec.mapEntryCount = 1;
-  spec.pMapEntries = &entry;
-  spec.dataSize = sizeof(pass);
-  spec.pData = &pass;
-  std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
-  stages[0].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vs;
-  stages[0].pName = "main";
-  stages[1] = stages[0];
-  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = fs;
-  stages[1].pSpecializationInfo = &spec;
-
-  VkPipelineVertexInputStateCreateInfo vi{};
-  vi.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-  VkPipelineInputAssemblyStateCreateInfo ia{};
-  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo vp{};
-  vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-  vp.viewportCount = 1;
-  vp.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo rs{};
-  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = VK_CULL_MODE_NONE;  // the quads' winding depends on the strand's screen direction
-  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  rs.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{};
-  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  ms.rasterizationSamples = target.samples ? target.samples : VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{};
-  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = fringe ? VK_FALSE : VK_TRUE;
-  ds.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask =
-      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  if (fringe) {  // premultiplied "over"
-    blend.blendEnable = VK_TRUE;
-    blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-    blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    blend.colorBlendOp = VK_BLEND_OP_ADD;
-    blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    blend.alphaBlendOp = VK_BLEND_OP_ADD;
-  }
-  VkPipelineColorBlendStateCreateInfo cb{};
-  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  cb.attachmentCount = shadow ? 0u : 1u;
-  cb.pAttachments = &blend;
-  const std::array<VkDynamicState, 2> dyn{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dy{};
-  dy.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dy.dynamicStateCount = static_cast<uint32_t>(dyn.size());
-  dy.pDynamicStates = dyn.data();
-
-  VkPipelineRenderingCreateInfo ri{};
-  ri.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
-  ri.colorAttachmentCount = shadow ? 0u : 1u;
-  ri.pColorAttachmentFormats = &target.color_format;
-  ri.depthAttachmentFormat = target.depth_format;
-
-  VkGraphicsPipelineCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-  ci.pNext = target.render_pass ? nullptr : &ri;
-  ci.stageCount = shadow ? 1u : 2u;
-  ci.pStages = stages.data();
-  ci.pVertexInputState = &vi;
-  ci.pInputAssemblyState = &ia;
-  ci.pViewportState = &vp;
-  ci.pRasterizationState = &rs;
-  ci.pMultisampleState = &ms;
-  ci.pDepthStencilState = &ds;
-  ci.pColorBlendState = &cb;
-  ci.pDynamicState = &dy;
-  ci.layout = shadowed ? r.shadowed_pipeline_layout : r.pipeline_layout;
-  ci.renderPass = target.render_pass;
-  ci.subpass = target.subpass;
+  const uint32_t pass = fringe ? 1u : 0u;  // the fragment shader's specialisation: core or fringe
+  GraphicsPipelineDesc desc;
+  desc.vertex = shadow ? spirv(k_spv_hair_shadow_vert) : spirv(k_spv_hair_vert);
+  if (!shadow) desc.fragment = shadowed ? spirv(k_spv_hair_shadowed_frag) : spirv(k_spv_hair_frag);
+  desc.fragment_spec = std::span<const uint32_t>(&pass, 1);
+  desc.target = shadow ? &r.info.shadow : &r.info.shading;
+  desc.layout = shadowed ? r.shadowed_pipeline_layout : r.pipeline_layout;
+  desc.depth_test = true;
+  desc.depth_write = !fringe;
+  desc.premultiplied_over = fringe;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  res = ctx.check(ctx.vk.vkCreateGraphicsPipelines(ctx.info.device, ctx.info.pipeline_cache, 1, &ci,
-                                                   ctx.info.allocator, &pipeline),
-                  "vkCreateGraphicsPipelines (hair)");
-  ctx.vk.vkDestroyShaderModule(ctx.info.device, vs, ctx.info.allocator);
-  if (fs) ctx.vk.vkDestroyShaderModule(ctx.info.device, fs, ctx.info.allocator);
+  const TvkResult res = create_graphics_pipeline(*r.ctx, desc, "vkCreateShaderModule (hair)",
+                                                 "vkCreateGraphicsPipelines (hair)", pipeline);
   if (res == TVK_SUCCESS) r.pipelines[static_cast<size_t>(kind)] = pipeline;
   return res;
 }

@@ -3,6 +3,8 @@
 // the largest view and groom seen.
 #include "state.hpp"
 
+#include "core/pipelines.hpp"
+
 #include "tressvk_render_spirv.h"
 
 #include <algorithm>
@@ -13,39 +15,10 @@ namespace tressvk::render::compute {
 namespace {
 
 template <size_t N>
-TvkResult make_module(Context& ctx, const uint32_t (&code)[N], VkShaderModule& out) {
-  VkShaderModuleCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-  ci.codeSize = sizeof(code);
-  ci.pCode = code;
-  return ctx.check(ctx.vk.vkCreateShaderModule(ctx.info.device, &ci, ctx.info.allocator, &out),
-                   "vkCreateShaderModule (hair compute)");
-}
-
-template <size_t N>
 TvkResult make_compute(Context& ctx, VkPipelineLayout layout, const uint32_t (&code)[N], uint32_t spec,
                        VkPipeline& out) {
-  VkShaderModule module = VK_NULL_HANDLE;
-  if (TvkResult res = make_module(ctx, code, module); res != TVK_SUCCESS) return res;
-  const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
-  VkSpecializationInfo si{};
-  si.mapEntryCount = 1;
-  si.pMapEntries = &entry;
-  si.dataSize = sizeof(spec);
-  si.pData = &spec;
-  VkComputePipelineCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-  ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  ci.stage.module = module;
-  ci.stage.pName = "main";
-  ci.stage.pSpecializationInfo = &si;
-  ci.layout = layout;
-  const TvkResult res = ctx.check(ctx.vk.vkCreateComputePipelines(ctx.info.device, ctx.info.pipeline_cache, 1, &ci,
-                                                                  ctx.info.allocator, &out),
-                                  "vkCreateComputePipelines (hair compute)");
-  ctx.vk.vkDestroyShaderModule(ctx.info.device, module, ctx.info.allocator);
-  return res;
+  return create_compute_pipeline(ctx, layout, spirv(code), std::span<const uint32_t>(&spec, 1),
+                                 "vkCreateComputePipelines (hair compute)", out);
 }
 
 VkDescriptorType binding_type(uint32_t b) {
@@ -216,84 +189,14 @@ TvkResult ensure_composite_pipeline(TvkRenderer_T& r) {
         res != TVK_SUCCESS)
       return res;
   }
-  VkShaderModule vs = VK_NULL_HANDLE, fs = VK_NULL_HANDLE;
-  TvkResult res = make_module(ctx, k_spv_composite_vert, vs);
-  if (res == TVK_SUCCESS) res = make_module(ctx, k_spv_composite_frag, fs);
-  if (res == TVK_SUCCESS) {
-    const TvkRenderTarget& target = r.info.shading;
-    std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
-    for (int i = 0; i < 2; ++i) {
-      stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-      stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-      stages[i].module = i == 0 ? vs : fs;
-      stages[i].pName = "main";
-    }
-    VkPipelineVertexInputStateCreateInfo vi{};
-    vi.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-    VkPipelineInputAssemblyStateCreateInfo ia{};
-    ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkPipelineViewportStateCreateInfo vp{};
-    vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-    vp.viewportCount = 1;
-    vp.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo rs{};
-    rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-    rs.polygonMode = VK_POLYGON_MODE_FILL;
-    rs.cullMode = VK_CULL_MODE_NONE;
-    rs.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo ms{};
-    ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-    ms.rasterizationSamples = target.samples ? target.samples : VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineDepthStencilStateCreateInfo ds{};
-    ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-    VkPipelineColorBlendAttachmentState blend{};
-    blend.colorWriteMask =
-        VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    blend.blendEnable = VK_TRUE;
-    blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-    blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    blend.colorBlendOp = VK_BLEND_OP_ADD;
-    blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    blend.alphaBlendOp = VK_BLEND_OP_ADD;
-    VkPipelineColorBlendStateCreateInfo cb{};
-    cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-    cb.attachmentCount = 1;
-    cb.pAttachments = &blend;
-    const std::array<VkDynamicState, 2> dyn{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkPipelineDynamicStateCreateInfo dy{};
-    dy.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-    dy.dynamicStateCount = static_cast<uint32_t>(dyn.size());
-    dy.pDynamicStates = dyn.data();
-    VkPipelineRenderingCreateInfo ri{};
-    ri.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
-    ri.colorAttachmentCount = 1;
-    ri.pColorAttachmentFormats = &target.color_format;
-    ri.depthAttachmentFormat = target.depth_format;
-    VkGraphicsPipelineCreateInfo ci{};
-    ci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-    ci.pNext = target.render_pass ? nullptr : &ri;
-    ci.stageCount = 2;
-    ci.pStages = stages.data();
-    ci.pVertexInputState = &vi;
-    ci.pInputAssemblyState = &ia;
-    ci.pViewportState = &vp;
-    ci.pRasterizationState = &rs;
-    ci.pMultisampleState = &ms;
-    ci.pDepthStencilState = &ds;
-    ci.pColorBlendState = &cb;
-    ci.pDynamicState = &dy;
-    ci.layout = s.composite_layout;
-    ci.renderPass = target.render_pass;
-    ci.subpass = target.subpass;
-    res = ctx.check(ctx.vk.vkCreateGraphicsPipelines(ctx.info.device, ctx.info.pipeline_cache, 1, &ci,
-                                                     ctx.info.allocator, &s.composite),
-                    "vkCreateGraphicsPipelines (hair composite)");
-  }
-  if (vs) ctx.vk.vkDestroyShaderModule(ctx.info.device, vs, ctx.info.allocator);
-  if (fs) ctx.vk.vkDestroyShaderModule(ctx.info.device, fs, ctx.info.allocator);
-  return res;
+  GraphicsPipelineDesc desc;
+  desc.vertex = spirv(k_spv_composite_vert);
+  desc.fragment = spirv(k_spv_composite_frag);
+  desc.target = &r.info.shading;
+  desc.layout = s.composite_layout;
+  desc.premultiplied_over = true;
+  return create_graphics_pipeline(ctx, desc, "vkCreateShaderModule (hair compute)",
+                                  "vkCreateGraphicsPipelines (hair composite)", s.composite);
 }
 
 TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint64_t vertices, uint64_t segments,
