@@ -96,7 +96,7 @@ typedef struct TvkShadowMap {
   VkImageView depth_view;             /* VK_NULL_HANDLE: no shadowing */
   VkSampler sampler;                  /* a NON-comparison sampler (depth values are read to count fibres) */
   VkImageLayout layout;               /* layout of the image while the shading call reads it */
-  double view_projection[16];         /* world -> light clip space, column-major, Vulkan depth 0..1 */
+  double view_projection[16];         /* world -> light clip space, column-major, Vulkan Y down, depth 0..1 */
   uint32_t perspective;               /* 0: orthographic projection; 1: perspective (spot light) */
   float near_plane, far_plane;        /* m, of the light projection (to turn depth into metres) */
 } TvkShadowMap;
@@ -105,7 +105,8 @@ typedef struct TvkShadowMap {
  * instance's simulation origin in double before anything reaches the GPU, so hair 10 km from the world origin
  * renders as precisely as at the origin. */
 typedef struct TvkView {
-  double view_projection[16];         /* world -> clip, column-major (glm layout), Vulkan depth 0..1 */
+  double view_projection[16];         /* world -> Vulkan clip space, column-major (glm layout): +y points down the
+                                         framebuffer, depth 0..1; a glm::perspective* matrix needs proj[1][1] *= -1 */
   double eye[3];                      /* m, world; for an orthographic light, a point far back along the light */
   uint32_t orthographic;              /* 1: quads face -direction instead of the eye */
   float direction[3];                 /* view direction (orthographic) */

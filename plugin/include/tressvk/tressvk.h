@@ -258,7 +258,8 @@ typedef struct TvkSimulateInfo {
 TVK_API TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer command_buffer, const TvkSimulateInfo* info);
 
 /* The passes recorded by the last tressvk_cmd_simulate, in order, deduplicated across substeps and instances
- * (e.g. "integrate", "vsp", "local_shape", "length+collision", "follow"). Returns how many there are; writes at
+ * (the base pass and the terms compiled in, e.g. "integrate+global", "vsp", "local_shape",
+ * "length+wind+collision+clamp", "follow"). Returns how many there are; writes at
  * most `capacity` names (static strings). */
 TVK_API uint32_t tressvk_get_recorded_passes(TvkContext context, const char** names, uint32_t capacity);
 
@@ -272,7 +273,8 @@ typedef struct TvkPassTiming {
  * enable_timestamps at context creation and a queue family with timestamp support). The compute hair path's
  * passes of that frame follow the simulation's, named "render.*" (recorded after tressvk_cmd_simulate in the same
  * frame; a frame without a simulate call times none of them). Returns the number of passes;
- * writes at most `capacity`. 0 when no results are available. */
+ * writes at most `capacity`. 0 when no results are available: after the last frame, the host (once the GPU is
+ * done) calls tressvk_new_frame frames_in_flight more times to make it readable. */
 TVK_API uint32_t tressvk_get_pass_timings(TvkContext context, TvkPassTiming* timings, uint32_t capacity);
 
 #ifdef __cplusplus
