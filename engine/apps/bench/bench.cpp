@@ -46,21 +46,12 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   out.guide_vertices = uint64_t{out.guides} * out.vertices_per_strand;
   out.rendered_vertices = out.guide_vertices * (1 + out.follows);
 
-  TvkContextCreateInfo ci = host::context_info(dev);
-  ci.frames_in_flight = 1;  // every frame is waited for (the state is read back)
-  ci.enable_timestamps = VK_TRUE;
-  TvkContext ctx = nullptr;
-  host::check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+  // One frame in flight: every frame is waited for (the state is read back).
+  TvkContext ctx = host::create_context(dev, 1, /*timestamps=*/true);
   const std::vector<std::byte> bytes = asset::write(groom);
   TvkAsset asset = host::load_asset(dev, ctx, bytes);
   const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), opt.params);
-  TvkInstanceCreateInfo ic{};
-  ic.struct_size = sizeof(ic);
-  ic.asset = asset;
-  ic.settings = &opt.settings;
-  ic.params = &opt.params;
-  TvkInstance inst = nullptr;
-  host::check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+  TvkInstance inst = host::create_instance(ctx, asset, opt.settings, opt.params);
 
   reference::Simulator step_ref(groom, params, opt.settings);  // reloaded from the GPU state before each frame
   reference::Simulator traj_ref(groom, params, opt.settings);  // free-running from the same initial state

@@ -168,11 +168,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "tressvk-bench: unknown scene '%s'\n", o.scene.c_str());
       return 1;
     }
-    engine::DeviceOptions dopt;
-    dopt.app_name = "tressvk-bench";
-    dopt.device = device;
-    dopt.validation = validation;
-    engine::Device dev(host::with_plugin_requirements(dopt));
+    engine::Device dev(host::tool_device_options("tressvk-bench", device, validation, false));
     asset::HairAsset groom;
     std::string groom_name;
     if (!asset_path.empty()) {

@@ -65,12 +65,7 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
 
 int run_render_bench(const RenderBenchOptions& o) {
   try {
-    engine::DeviceOptions dopt;
-    dopt.app_name = "tressvk-bench";
-    dopt.device = o.device;
-    dopt.validation = o.validation;
-    dopt.sync_validation = o.validation;
-    engine::Device dev(host::with_plugin_requirements(dopt));
+    engine::Device dev(host::tool_device_options("tressvk-bench", o.device, o.validation, o.validation));
 
     demo::Options d;
     d.width = o.width;

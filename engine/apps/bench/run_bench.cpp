@@ -86,25 +86,11 @@ int execute_run_command(const RunCommand& cmd) {
 
   std::string json;
   try {
-    engine::DeviceOptions dopt;
-    dopt.app_name = "tressvk-bench";
-    dopt.device = cmd.device;
-    dopt.validation = cmd.validation;
-    dopt.sync_validation = cmd.validation;
-    engine::Device dev(host::with_plugin_requirements(dopt));
-    TvkContextCreateInfo ci = host::context_info(dev);
-    ci.frames_in_flight = 1;
-    TvkContext ctx = nullptr;
-    host::check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+    engine::Device dev(host::tool_device_options("tressvk-bench", cmd.device, cmd.validation, cmd.validation));
+    TvkContext ctx = host::create_context(dev, 1);
     const std::vector<std::byte> bytes = asset::write(groom);
     TvkAsset asset = host::load_asset(dev, ctx, bytes);
-    TvkInstanceCreateInfo ic{};
-    ic.struct_size = sizeof(ic);
-    ic.asset = asset;
-    ic.settings = &cmd.settings;
-    ic.params = &cmd.params;
-    TvkInstance inst = nullptr;
-    host::check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+    TvkInstance inst = host::create_instance(ctx, asset, cmd.settings, cmd.params);
     for (uint32_t g = 0; g < std::max<size_t>(1, groom.groups.size()); ++g)
       host::check_tvk(tressvk_set_sim_params(inst, g, &cmd.params), ctx, "tressvk_set_sim_params");
 

@@ -99,12 +99,7 @@ CLI::App* add_soak_subcommand(CLI::App& app) {
 
 int run_soak() {
   const SoakOptions& o = g_options;
-  engine::DeviceOptions dopt;
-  dopt.app_name = "tressvk-bench-soak";
-  dopt.device = o.device;
-  dopt.validation = o.validation;
-  dopt.sync_validation = o.validation;
-  engine::Device dev(host::with_plugin_requirements(dopt));
+  engine::Device dev(host::tool_device_options("tressvk-bench-soak", o.device, o.validation, o.validation));
   asset::HairAsset groom;
   std::string groom_name;
   if (!o.asset_path.empty()) {
@@ -120,10 +115,8 @@ int run_soak() {
   const reference::SceneGeometry geometry = reference::scene_geometry(rest);
   const std::vector<std::string> scenes = reference::scene_names();
 
-  TvkContextCreateInfo ci = host::context_info(dev);
-  ci.frames_in_flight = 1;  // every frame is submitted and waited for, so the state can be read back any time
-  TvkContext ctx = nullptr;
-  host::check_tvk(tressvk_create_context(&ci, &ctx), nullptr, "tressvk_create_context");
+  // One frame in flight: every frame is submitted and waited for, so the state can be read back any time.
+  TvkContext ctx = host::create_context(dev, 1);
   const std::vector<std::byte> bytes = asset::write(groom);
   TvkAsset asset = host::load_asset(dev, ctx, bytes);
 

@@ -39,6 +39,37 @@ TvkContextCreateInfo context_info(const engine::Device& device) {
   return info;
 }
 
+engine::DeviceOptions tool_device_options(const std::string& app_name, const std::string& device, bool validation,
+                                          bool sync_validation) {
+  engine::DeviceOptions options;
+  options.app_name = app_name;
+  options.device = device;
+  options.validation = validation;
+  options.sync_validation = sync_validation;
+  return with_plugin_requirements(options);
+}
+
+TvkContext create_context(const engine::Device& device, uint32_t frames_in_flight, bool timestamps) {
+  TvkContextCreateInfo info = context_info(device);
+  info.frames_in_flight = frames_in_flight;
+  info.enable_timestamps = timestamps ? VK_TRUE : VK_FALSE;
+  TvkContext context = nullptr;
+  check_tvk(tressvk_create_context(&info, &context), nullptr, "tressvk_create_context");
+  return context;
+}
+
+TvkInstance create_instance(TvkContext context, TvkAsset asset, const TvkSimSettings& settings,
+                            const TvkSimParams& params) {
+  TvkInstanceCreateInfo ic{};
+  ic.struct_size = sizeof(ic);
+  ic.asset = asset;
+  ic.settings = &settings;
+  ic.params = &params;
+  TvkInstance instance = nullptr;
+  check_tvk(tressvk_create_instance(context, &ic, &instance), context, "tressvk_create_instance");
+  return instance;
+}
+
 TvkAsset load_asset(const engine::Device& device, TvkContext context, std::span<const std::byte> asset_bytes) {
   TvkAsset asset = nullptr;
   device.run_commands([&](VkCommandBuffer cmd) {

@@ -66,7 +66,7 @@ namespace tressvk::render {
 
 TvkResult create_pipeline(TvkRenderer_T& r, PipelineKind kind);
 
-// Shared by the raster and compute recording calls (render_draw.cpp).
+// Shared by the raster and compute recording calls (draw.cpp).
 TvkResult check_draw_info(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info, const char* fn);
 // Switches to this frame's slot (resetting its descriptor pools) and checks max_draws_per_frame.
 TvkResult begin_call(TvkRenderer_T& r, const char* fn);

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace tressvk::host {
@@ -18,6 +19,18 @@ engine::DeviceOptions with_plugin_requirements(engine::DeviceOptions options);
 
 // A TvkContextCreateInfo for the engine's device (the caller adds callbacks and options).
 TvkContextCreateInfo context_info(const engine::Device& device);
+
+// The DeviceOptions of a headless tool (bench, soak): the named device (empty: automatic), validation and
+// synchronization validation as asked, the plugin's requirements merged.
+engine::DeviceOptions tool_device_options(const std::string& app_name, const std::string& device, bool validation,
+                                          bool sync_validation);
+
+// A context on the engine's device without callbacks; throws engine::Error naming the failure.
+TvkContext create_context(const engine::Device& device, uint32_t frames_in_flight, bool timestamps = false);
+
+// An instance of `asset` with these settings and `params` for every strand group; throws engine::Error.
+TvkInstance create_instance(TvkContext context, TvkAsset asset, const TvkSimSettings& settings,
+                            const TvkSimParams& params);
 
 // Throws engine::Error with the plugin's message when a TressVK call fails.
 void check_tvk(TvkResult result, TvkContext context, const char* what);
