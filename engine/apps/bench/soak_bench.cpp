@@ -2,7 +2,11 @@
 // teleports, hitches (long frames), pauses (dt 0), parameter and settings changes, wind gusts, instances created
 // and destroyed every few frames -- for a given wall-clock time. Every `--check-every` frames each live instance is
 // read back: it must have 0 NaN strands and 0 non-finite resets, and a bounded stretch; GPU memory (per live
-// instance count) and the process's resident memory must stay flat. Exit 0 when all held, 1 otherwise.
+// instance count) and the process's resident memory must stay flat. With --device-lost-every N the host's submit
+// of every Nth frame is taken as having returned VK_ERROR_DEVICE_LOST, and the host recovers as docs/integration.md
+// says: tressvk_report_device_lost, every call that uses the device refuses, everything is destroyed, the VkDevice
+// and the context are recreated, the asset is loaded again and the instances start over from their rest pose.
+// Exit 0 when all held, 1 otherwise.
 //
 //   tressvk-bench soak --builtin curly --seconds 3600 --json soak.json
 //   tressvk-bench soak --asset Ratboy_mohawk.tvkhair --seconds 3600 --instances 4
@@ -25,6 +29,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -44,6 +49,7 @@ struct SoakOptions {
   double max_stretch = 0.5;     // relative, over guide segments
   double rss_slack_mb = 32;     // allowed resident-memory growth after the warm-up
   bool validation = false;
+  uint64_t device_lost_every = 0;  // frames; 0 = never
 };
 
 SoakOptions g_options;
@@ -59,9 +65,11 @@ struct SoakInstance {
 
 struct Totals {
   uint64_t frames = 0, instance_frames = 0, created = 0, destroyed = 0, teleports = 0, hitches = 0, pauses = 0,
-           param_changes = 0, settings_changes = 0, checks = 0, nan_strands = 0, exploded = 0, resets = 0;
+           param_changes = 0, settings_changes = 0, checks = 0, nan_strands = 0, exploded = 0, resets = 0,
+           device_losses = 0, recoveries = 0;
   double stretch_max = 0;
   double rss_start_mb = 0, rss_end_mb = 0, rss_max_mb = 0;
+  double rss_recovery_mb = 0;  // resident memory added across device recreations (reported, not held against the run)
   std::map<uint32_t, std::pair<uint64_t, uint64_t>> gpu_bytes_by_instances;  // first and last seen
   bool gpu_flat = true;
 };
@@ -93,13 +101,17 @@ CLI::App* add_soak_subcommand(CLI::App& app) {
   soak->add_option("--rss-slack-mb", o.rss_slack_mb, "resident memory growth allowed after the first 10 %")->capture_default_str();
   soak->add_option("--device", o.device, "device index or name substring");
   soak->add_option("--json", o.json_path, "write the figures as JSON");
+  soak->add_option("--device-lost-every", o.device_lost_every,
+                   "take every Nth frame's submit as VK_ERROR_DEVICE_LOST and recover (0: never)")->capture_default_str();
   soak->add_flag("--validation", o.validation, "enable the Vulkan validation layer (any message fails the run)");
   return soak;
 }
 
 int run_soak() {
   const SoakOptions& o = g_options;
-  engine::Device dev(host::tool_device_options("tressvk-bench-soak", o.device, o.validation, o.validation));
+  const engine::DeviceOptions device_options =
+      host::tool_device_options("tressvk-bench-soak", o.device, o.validation, o.validation);
+  auto device = std::make_unique<engine::Device>(device_options);
   asset::HairAsset groom;
   std::string groom_name;
   if (!o.asset_path.empty()) {
@@ -116,9 +128,9 @@ int run_soak() {
   const std::vector<std::string> scenes = reference::scene_names();
 
   // One frame in flight: every frame is submitted and waited for, so the state can be read back any time.
-  TvkContext ctx = host::create_context(dev, 1);
   const std::vector<std::byte> bytes = asset::write(groom);
-  TvkAsset asset = host::load_asset(dev, ctx, bytes);
+  TvkContext ctx = host::create_context(*device, 1);
+  TvkAsset asset = host::load_asset(*device, ctx, bytes);
 
   std::mt19937_64 rng(o.seed);
   const auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
@@ -149,6 +161,38 @@ int run_soak() {
     tressvk_destroy_instance(live[i].handle);
     live.erase(live.begin() + static_cast<std::ptrdiff_t>(i));
     ++t.destroyed;
+  };
+
+  // The host's submit returned VK_ERROR_DEVICE_LOST: report it, check that the context refuses device work,
+  // destroy everything (nothing waits for the GPU), recreate the device and the context, and start the live
+  // instances over from their rest pose (a lost device's memory is gone).
+  double rss_before_loss = 0;
+  bool rebaseline_rss = false;
+  const auto lose_and_recover = [&] {
+    ++t.device_losses;
+    if (!rebaseline_rss) rss_before_loss = rss_mb();
+    tressvk_report_device_lost(ctx);
+    if (tressvk_new_frame(ctx) != TVK_ERROR_DEVICE_LOST || !tressvk_is_device_lost(ctx))
+      fail("the context did not refuse device work after tressvk_report_device_lost");
+    const size_t alive = live.size();
+    while (!live.empty()) destroy_instance(live.size() - 1);
+    tressvk_destroy_asset(asset);
+    tressvk_new_frame(ctx);  // a lost context frees what was deferred at once
+    TvkMemoryUsage usage{};
+    host::check_tvk(tressvk_get_memory_usage(ctx, &usage), ctx, "tressvk_get_memory_usage");
+    if (usage.allocation_count != 0) fail("GPU allocations left after a device loss teardown");
+    tressvk_destroy_context(ctx);
+    if (o.validation && device->messages().count() > 0) fail("validation messages before the device was recreated");
+    device.reset();
+    device = std::make_unique<engine::Device>(device_options);
+    ctx = host::create_context(*device, 1);
+    asset = host::load_asset(*device, ctx, bytes);
+    for (size_t i = 0; i < alive; ++i) create_instance();
+    t.gpu_bytes_by_instances.clear();  // a new device: memory is compared from here on
+    // What a new device adds to the process until its first check (the driver's per-device state and the
+    // pipelines compiled again) is reported on its own; the flat-memory check covers the frames between.
+    rebaseline_rss = true;
+    ++t.recoveries;
   };
 
   create_instance();
@@ -211,7 +255,7 @@ int run_soak() {
       ++s.frame;
     }
     host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
-    dev.run_commands([&](VkCommandBuffer cmd) {
+    device->run_commands([&](VkCommandBuffer cmd) {
       TvkSimulateInfo si{};
       si.struct_size = sizeof(si);
       si.instance_count = static_cast<uint32_t>(handles.size());
@@ -220,11 +264,15 @@ int run_soak() {
     });
     ++t.frames;
     t.instance_frames += handles.size();
+    if (o.device_lost_every && t.frames % o.device_lost_every == 0) {
+      lose_and_recover();
+      continue;
+    }
 
     if (t.frames % o.check_every == 0) {
       ++t.checks;
       for (const SoakInstance& s : live) {
-        const host::HairState state = host::read_hair_state(dev, s.handle);
+        const host::HairState state = host::read_hair_state(*device, s.handle);
         const auto h = reference::health(std::span<const std::array<double, 3>>(state.positions), rest);
         const auto st = reference::stretch(std::span<const std::array<double, 3>>(state.positions), rest);
         TvkInstanceStats stats{};
@@ -251,6 +299,11 @@ int run_soak() {
              std::to_string(it->second.first) + " -> " + std::to_string(usage.device_bytes) + " bytes");
       }
       const double rss = rss_mb();
+      if (rebaseline_rss) {
+        rebaseline_rss = false;
+        t.rss_recovery_mb += rss - rss_before_loss;
+        t.rss_start_mb += rss - rss_before_loss;
+      }
       if (!warm && elapsed() >= 0.1 * o.seconds) {
         warm = true;
         t.rss_start_mb = rss;
@@ -260,10 +313,10 @@ int run_soak() {
       if (warm && rss > t.rss_start_mb + o.rss_slack_mb)
         fail("resident memory grew from " + std::to_string(t.rss_start_mb) + " to " + std::to_string(rss) + " MB");
     }
-    if (o.validation && dev.messages().count() > 0) fail("validation messages");
+    if (o.validation && device->messages().count() > 0) fail("validation messages");
     if (!ok) break;
   }
-  dev.wait_idle();
+  device->wait_idle();
   while (!live.empty()) destroy_instance(live.size() - 1);
   tressvk_destroy_asset(asset);
   for (int i = 0; i < 3; ++i) tressvk_new_frame(ctx);
@@ -273,7 +326,7 @@ int run_soak() {
   tressvk_destroy_context(ctx);
 
   const double secs = elapsed();
-  std::printf("soak        %s on %s, %.0f s, seed %llu\n", groom_name.c_str(), dev.name(), secs,
+  std::printf("soak        %s on %s, %.0f s, seed %llu\n", groom_name.c_str(), device->name(), secs,
               static_cast<unsigned long long>(o.seed));
   std::printf("frames      %llu (%llu instance-frames), %llu instances created, %llu destroyed\n",
               static_cast<unsigned long long>(t.frames), static_cast<unsigned long long>(t.instance_frames),
@@ -282,6 +335,11 @@ int run_soak() {
               static_cast<unsigned long long>(t.teleports), static_cast<unsigned long long>(t.hitches),
               static_cast<unsigned long long>(t.pauses), static_cast<unsigned long long>(t.param_changes),
               static_cast<unsigned long long>(t.settings_changes));
+  if (o.device_lost_every)
+    std::printf("device loss %llu simulated, %llu recovered (context and device recreated, asset reloaded); "
+                "resident memory %+.1f MB across them (to the first check on each new device)\n",
+                static_cast<unsigned long long>(t.device_losses), static_cast<unsigned long long>(t.recoveries),
+                t.rss_recovery_mb);
   std::printf("health      %llu checks: NaN strands max %llu, non-finite resets max %llu, exploded max %llu, "
               "stretch max %.3g (limit %.3g)\n",
               static_cast<unsigned long long>(t.checks), static_cast<unsigned long long>(t.nan_strands),
@@ -293,10 +351,10 @@ int run_soak() {
   std::printf("); resident %.1f MB after warm-up, %.1f MB at the end, %.1f MB max\n", t.rss_start_mb, t.rss_end_mb,
               t.rss_max_mb);
   if (o.validation)
-    std::printf("validation  %llu message(s)\n", static_cast<unsigned long long>(dev.messages().count()));
+    std::printf("validation  %llu message(s)\n", static_cast<unsigned long long>(device->messages().count()));
   std::printf("result      %s%s\n", ok ? "PASS" : "FAIL: ", failure.c_str());
   if (!o.json_path.empty()) {
-    nlohmann::json j = {{"groom", groom_name}, {"device", dev.name()}, {"seconds", secs}, {"seed", o.seed},
+    nlohmann::json j = {{"groom", groom_name}, {"device", device->name()}, {"seconds", secs}, {"seed", o.seed},
                         {"frames", t.frames}, {"instance_frames", t.instance_frames}, {"created", t.created},
                         {"destroyed", t.destroyed}, {"teleports", t.teleports}, {"hitches", t.hitches},
                         {"pauses", t.pauses}, {"param_changes", t.param_changes},
@@ -304,7 +362,8 @@ int run_soak() {
                         {"nan_strands_max", t.nan_strands}, {"nonfinite_resets_max", t.resets},
                         {"exploded_strands_max", t.exploded}, {"stretch_max", t.stretch_max},
                         {"gpu_memory_flat", t.gpu_flat}, {"rss_after_warmup_mb", t.rss_start_mb},
-                        {"rss_end_mb", t.rss_end_mb}, {"rss_max_mb", t.rss_max_mb}, {"pass", ok}, {"failure", failure}};
+                        {"rss_end_mb", t.rss_end_mb}, {"rss_max_mb", t.rss_max_mb}, {"device_losses", t.device_losses}, {"recoveries", t.recoveries},
+                        {"rss_across_recoveries_mb", t.rss_recovery_mb}, {"pass", ok}, {"failure", failure}};
     std::ofstream f(o.json_path);
     f << j.dump(2) << "\n";
   }

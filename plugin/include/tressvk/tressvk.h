@@ -58,7 +58,8 @@ typedef enum TvkResult {
   TVK_ERROR_INVALID_ASSET = -4,     /* a .tvkhair file or buffer that is corrupt, truncated or too new */
   TVK_ERROR_IO = -5,                /* a file that cannot be read */
   TVK_ERROR_MISSING_FEATURE = -6,   /* the device lacks a feature or extension TressVK needs */
-  TVK_ERROR_VERSION_MISMATCH = -7   /* header and library disagree (see TVK_CHECK_VERSION) */
+  TVK_ERROR_VERSION_MISMATCH = -7,  /* header and library disagree (see TVK_CHECK_VERSION) */
+  TVK_ERROR_DEVICE_LOST = -8        /* the device was lost (see tressvk_report_device_lost): recreate the context */
 } TvkResult;
 
 typedef enum TvkMessageSeverity {
@@ -116,6 +117,16 @@ TVK_API void tressvk_get_device_requirements(TvkDeviceRequirements* out_requirem
 TVK_API TvkResult tressvk_create_context(const TvkContextCreateInfo* info, TvkContext* out_context);
 /* The host must make sure the GPU no longer uses anything of the context (e.g. vkDeviceWaitIdle) first. */
 TVK_API void tressvk_destroy_context(TvkContext context);
+
+/* Device loss. When the host's vkQueueSubmit, vkWaitForFences, vkDeviceWaitIdle or present returns
+ * VK_ERROR_DEVICE_LOST, it tells the context so. TressVK also marks the context lost by itself when one of its own
+ * Vulkan calls returns VK_ERROR_DEVICE_LOST (e.g. reading timestamps). From then on every call that would use the
+ * device (load, create, tressvk_new_frame, every tressvk_cmd_*) returns TVK_ERROR_DEVICE_LOST with a message; the
+ * destroy calls still work and never wait for the GPU. To recover, destroy every renderer, instance and asset and
+ * the context, recreate the VkDevice, then create a new context and load again (docs/integration.md, "Device
+ * loss"). Returns VK_TRUE once the context is lost. */
+TVK_API void tressvk_report_device_lost(TvkContext context);
+TVK_API VkBool32 tressvk_is_device_lost(TvkContext context);
 
 TVK_API TvkResult tressvk_get_memory_usage(TvkContext context, TvkMemoryUsage* out_usage);
 /* The message of the last failed call on this context ("" when none). With context NULL: the message of the last

@@ -60,9 +60,21 @@ void Context::message(TvkMessageSeverity severity, const char* format, ...) {
 
 TvkResult Context::check(VkResult vr, const char* what) {
   if (vr == VK_SUCCESS) return TVK_SUCCESS;
+  if (vr == VK_ERROR_DEVICE_LOST) {
+    device_lost = true;
+    return fail(TVK_ERROR_DEVICE_LOST, "%s failed: VK_ERROR_DEVICE_LOST (destroy every TressVK object and the context, "
+                "then recreate them on a new device)", what);
+  }
   if (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY || vr == VK_ERROR_OUT_OF_POOL_MEMORY)
     return fail(TVK_ERROR_OUT_OF_MEMORY, "%s failed: %s", what, vk_result_name(vr));
   return fail(TVK_ERROR_VULKAN, "%s failed: %s", what, vk_result_name(vr));
+}
+
+TvkResult Context::require_device(const char* call) {
+  if (!device_lost) return TVK_SUCCESS;
+  return fail(TVK_ERROR_DEVICE_LOST,
+              "%s: the device was lost; destroy every TressVK object and the context, then recreate them on a new "
+              "device", call);
 }
 
 uint32_t Context::time_begin(VkCommandBuffer cmd) {
@@ -224,6 +236,7 @@ const char* tressvk_result_string(TvkResult result) {
     case TVK_ERROR_IO: return "I/O error";
     case TVK_ERROR_MISSING_FEATURE: return "missing device feature";
     case TVK_ERROR_VERSION_MISMATCH: return "version mismatch";
+    case TVK_ERROR_DEVICE_LOST: return "device lost";
   }
   return "unknown result";
 }
@@ -299,6 +312,19 @@ void tressvk_destroy_context(TvkContext context) {
       vmaDestroyAllocator(ctx->allocator);
   }
   delete ctx;
+}
+
+void tressvk_report_device_lost(TvkContext context) {
+  TvkContext_T* ctx = context;
+  if (!ctx || ctx->device_lost) return;
+  ctx->device_lost = true;
+  ctx->message(TVK_MESSAGE_ERROR, "the host reported VK_ERROR_DEVICE_LOST: every call that uses the device now "
+               "returns TVK_ERROR_DEVICE_LOST; destroy every TressVK object and the context to recover");
+}
+
+VkBool32 tressvk_is_device_lost(TvkContext context) {
+  const TvkContext_T* ctx = context;
+  return ctx && ctx->device_lost ? VK_TRUE : VK_FALSE;
 }
 
 TvkResult tressvk_get_memory_usage(TvkContext context, TvkMemoryUsage* out_usage) {

@@ -22,6 +22,9 @@ struct Context {
   VmaAllocator allocator = VK_NULL_HANDLE;    // private to TressVK, on the host's device
   uint32_t frames_in_flight = 2;
   std::string last_error;
+  // Set by tressvk_report_device_lost or a Vulkan call of ours that returned VK_ERROR_DEVICE_LOST; then every call
+  // that would use the device refuses (require_device) and only destruction works.
+  bool device_lost = false;
   uint64_t error_serial = 0;                  // counts fail() calls: guarded() sees whether a failure has a message
 
   // Frame pacing: tressvk_new_frame() advances `frame`; the host promises that the GPU has finished the frame
@@ -75,8 +78,11 @@ struct Context {
   // Records an error, forwards it to the host's callback, and returns `result` for `return ctx.fail(...)`.
   TvkResult fail(TvkResult result, const char* format, ...) __attribute__((format(printf, 3, 4)));
   void message(TvkMessageSeverity severity, const char* format, ...) __attribute__((format(printf, 3, 4)));
-  // Maps a VkResult to TVK_SUCCESS or a recorded TVK_ERROR_VULKAN naming `what`.
+  // Maps a VkResult to TVK_SUCCESS or a recorded TVK_ERROR_VULKAN naming `what` (TVK_ERROR_OUT_OF_MEMORY for the
+  // out-of-memory results; TVK_ERROR_DEVICE_LOST for VK_ERROR_DEVICE_LOST, which also marks the context lost).
   TvkResult check(VkResult vr, const char* what);
+  // TVK_SUCCESS, or TVK_ERROR_DEVICE_LOST with a message naming `call` once the device is lost.
+  TvkResult require_device(const char* call);
 };
 
 const char* vk_result_name(VkResult result);

@@ -84,6 +84,14 @@ VKAPI_ATTR VkResult VKAPI_CALL wrap_vkCreateGraphicsPipelines(VkDevice d, VkPipe
   return g_real.vkCreateGraphicsPipelines(d, c, n, i, a, o);
 }
 
+// A lost device is not a counted fault: once `device_lost` is set the device stays lost, as a real one does.
+VKAPI_ATTR VkResult VKAPI_CALL wrap_vkGetQueryPoolResults(VkDevice d, VkQueryPool p, uint32_t first, uint32_t count,
+                                                          size_t size, void* data, VkDeviceSize stride,
+                                                          VkQueryResultFlags flags) {
+  if (g_control && g_control->device_lost) return VK_ERROR_DEVICE_LOST;
+  return g_real.vkGetQueryPoolResults(d, p, first, count, size, data, stride, flags);
+}
+
 }  // namespace
 
 void install(const void* next, VolkDeviceTable& t) {
@@ -111,6 +119,7 @@ void install(const void* next, VolkDeviceTable& t) {
   TVK_SET(vkInvalidateMappedMemoryRanges);
   TVK_SET(vkCreateComputePipelines);
   TVK_SET(vkCreateGraphicsPipelines);
+  TVK_SET(vkGetQueryPoolResults);
 #undef TVK_SET
 }
 

@@ -16,6 +16,7 @@ struct Control {
   uint64_t fail_at = 0;          // fail the fail_at-th fallible call counted from now (1 = the next); 0 = never
   uint64_t calls = 0;            // fallible calls counted so far
   const char* fired = nullptr;   // the call that was failed, once it was
+  bool device_lost = false;      // from now on the calls that can report a lost device (vkGetQueryPoolResults) do
   void arm(uint64_t nth) {
     fail_at = nth;
     calls = 0;

@@ -53,6 +53,7 @@ double lod_fraction(const TvkLodSettings& lod, double distance) {
 
 TvkResult begin_call(TvkRenderer_T& r, const char* fn) {
   Context& ctx = *r.ctx;
+  if (const TvkResult lost = ctx.require_device(fn); lost != TVK_SUCCESS) return lost;
   // A new frame: this slot's previous user finished frames_in_flight frames ago (tressvk_new_frame's promise).
   if (r.current_frame != ctx.frame) {
     r.current_frame = ctx.frame;
@@ -154,6 +155,13 @@ TvkResult check_draw_info(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawIn
   Context& ctx = *r.ctx;
   if (!cmd || !info || info->struct_size != sizeof(TvkDrawInfo) || !info->instance || !info->view)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: command buffer, info (struct_size), instance or view missing", fn);
+  if (const TvkResult lost = ctx.require_device(fn); lost != TVK_SUCCESS) return lost;
+  if (info->instance->ctx != &ctx)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: the instance belongs to another context", fn);
+  if (info->instance->frames == 0)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
+                    "%s: the instance has not been simulated yet (record tressvk_cmd_simulate for it first: its "
+                    "positions are undefined until then)", fn);
   if (!finite_view(*info->view))
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: view has a non-finite matrix or a zero viewport", fn);
   if (info->light_count > TVK_MAX_LIGHTS || (info->light_count && !info->lights))

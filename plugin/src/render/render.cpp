@@ -91,6 +91,7 @@ TvkResult tressvk_create_renderer(TvkContext context, const TvkRendererCreateInf
   Context& ctx = *context;
   if (!out_renderer) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_create_renderer: out_renderer is NULL");
   *out_renderer = nullptr;
+  if (const TvkResult lost = ctx.require_device("tressvk_create_renderer"); lost != TVK_SUCCESS) return lost;
   if (!info || info->struct_size != sizeof(TvkRendererCreateInfo))
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_create_renderer: info is NULL or has a wrong struct_size");
   if (info->shading.depth_format == VK_FORMAT_UNDEFINED || info->shading.color_format == VK_FORMAT_UNDEFINED)

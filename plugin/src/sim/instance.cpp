@@ -137,6 +137,7 @@ TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInf
   if (!context) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "%s: context is NULL", kCall);
   Context& ctx = *context;
   return tressvk::guarded(ctx, kCall, [&]() -> TvkResult {
+    if (const TvkResult lost = ctx.require_device(kCall); lost != TVK_SUCCESS) return lost;
     if (!out) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: out_instance is NULL", kCall);
     if (!info) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: info is NULL", kCall);
     if (info->struct_size != sizeof(TvkInstanceCreateInfo))

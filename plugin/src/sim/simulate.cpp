@@ -207,13 +207,15 @@ extern "C" {
 TvkResult tressvk_new_frame(TvkContext context) {
   if (!context) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_new_frame: context is NULL");
   ++context->frame;
-  context->collect_garbage(false);
-  return TVK_SUCCESS;
+  // After a device loss nothing runs on the GPU any more: release everything deferred at once.
+  context->collect_garbage(context->device_lost);
+  return context->require_device("tressvk_new_frame");
 }
 
 // The body of tressvk_cmd_simulate (run through tressvk::guarded: exceptions and unnamed failures get messages).
 static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, const TvkSimulateInfo* info) {
   using namespace tressvk;
+  if (const TvkResult lost = ctx.require_device("tressvk_cmd_simulate"); lost != TVK_SUCCESS) return lost;
   if (!cmd) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: command_buffer is VK_NULL_HANDLE");
   if (!info) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: info is NULL");
   if (info->struct_size != sizeof(TvkSimulateInfo))
@@ -390,11 +392,13 @@ uint32_t tressvk_get_pass_timings(TvkContext context, TvkPassTiming* timings, ui
   const uint32_t slice = static_cast<uint32_t>(done % ctx.frames_in_flight);
   const Context::TimedSlice& t = ctx.timed_slices[slice];
   if (t.frame != done || t.pass_names.empty()) return 0;
+  if (ctx.device_lost) return 0;
   std::vector<uint64_t> stamps(2 * t.pass_names.size());
-  if (ctx.vk.vkGetQueryPoolResults(ctx.info.device, ctx.timestamp_pool, slice * ctx.queries_per_frame,
-                                   static_cast<uint32_t>(stamps.size()), stamps.size() * sizeof(uint64_t),
-                                   stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
-    return 0;
+  const VkResult vr = ctx.vk.vkGetQueryPoolResults(ctx.info.device, ctx.timestamp_pool, slice * ctx.queries_per_frame,
+                                                   static_cast<uint32_t>(stamps.size()), stamps.size() * sizeof(uint64_t),
+                                                   stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+  if (vr == VK_ERROR_DEVICE_LOST) ctx.check(vr, "tressvk_get_pass_timings: vkGetQueryPoolResults");  // marks it lost
+  if (vr != VK_SUCCESS) return 0;
   // Sum the slots of each pass name (one slot per substep), in the order names first appear.
   std::vector<TvkPassTiming> out;
   for (size_t i = 0; i < t.pass_names.size(); ++i) {

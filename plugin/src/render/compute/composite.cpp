@@ -10,6 +10,7 @@ TvkResult record_composite(TvkRenderer_T& r, VkCommandBuffer cmd) {
   Context& ctx = *r.ctx;
   const char* fn = "tressvk_cmd_composite_hair";
   if (!cmd) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: command buffer is NULL", fn);
+  if (const TvkResult lost = ctx.require_device(fn); lost != TVK_SUCCESS) return lost;
   if (!r.compute || r.compute->width == 0)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: no tressvk_cmd_raster_hair was recorded before", fn);
   if (TvkResult res = begin_call(r, fn); res != TVK_SUCCESS) return res;
