@@ -60,6 +60,9 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
   c->add_option("--device", o.device, "device index or name substring");
   c->add_flag("--validation", o.validation, "Vulkan validation + synchronization validation (any message fails)");
   c->add_flag("--no-reference", o.no_reference, "skip the reference (speed only)");
+  c->add_option("--shade", o.shade, "compute path: Kajiya-Kay per vertex or per fragment (the reference shades per vertex)")
+      ->check(CLI::IsMember({"vertex", "fragment"}))
+      ->capture_default_str();
   return c;
 }
 
@@ -115,6 +118,8 @@ int run_render_bench(const RenderBenchOptions& o) {
     }
 
     demo::DemoApp app(dev, d);
+    const uint32_t shade_flag = o.shade == "fragment" ? TVK_RASTER_SHADE_PER_FRAGMENT : 0u;
+    app.set_raster_flags(shade_flag);
     std::vector<double> hair_shadow, hair, shadow, shading;
     uint32_t strands = 0;
     app.run(o.warmup, [](demo::FrameReport&) {});
@@ -130,6 +135,7 @@ int run_render_bench(const RenderBenchOptions& o) {
     nlohmann::json j;
     j["device"] = dev.description();
     j["path"] = o.path;
+    j["shading"] = o.path == "compute" ? "per " + o.shade : "per fragment";
     j["groom"] = groom;
     j["width"] = o.width;
     j["height"] = o.height;
@@ -158,7 +164,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       j["memory_bytes"] = stats.memory_bytes;
       j["entry_capacity"] = stats.entry_capacity;
       if (!o.no_reference) {
-        app.set_raster_flags(TVK_RASTER_CAPTURE);
+        app.set_raster_flags(TVK_RASTER_CAPTURE | shade_flag);
         engine::Pixels frame;
         app.run(1, [&](demo::FrameReport& f) { frame = std::move(f.pixels); });
         if (!o.png.empty()) engine::write_png(o.png, frame);

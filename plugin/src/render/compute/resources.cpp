@@ -6,6 +6,8 @@
 #include "tressvk_render_spirv.h"
 
 #include <algorithm>
+#include <array>
+#include <initializer_list>
 #include <new>
 
 namespace tressvk::render::compute {
@@ -23,16 +25,24 @@ TvkResult make_module(Context& ctx, const uint32_t (&code)[N], VkShaderModule& o
 }
 
 template <size_t N>
-TvkResult make_compute(Context& ctx, VkPipelineLayout layout, const uint32_t (&code)[N], uint32_t spec,
-                       VkPipeline& out) {
+TvkResult make_compute(Context& ctx, VkPipelineLayout layout, const uint32_t (&code)[N],
+                       std::initializer_list<uint32_t> specs, VkPipeline& out) {
   VkShaderModule module = VK_NULL_HANDLE;
   if (TvkResult res = make_module(ctx, code, module); res != TVK_SUCCESS) return res;
-  const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+  // Specialization constants 0, 1, ... in order.
+  std::array<VkSpecializationMapEntry, 4> entries{};
+  std::array<uint32_t, 4> data{};
+  uint32_t count = 0;
+  for (const uint32_t v : specs) {
+    if (count == entries.size()) break;
+    entries[count] = {count, static_cast<uint32_t>(count * sizeof(uint32_t)), sizeof(uint32_t)};
+    data[count++] = v;
+  }
   VkSpecializationInfo si{};
-  si.mapEntryCount = 1;
-  si.pMapEntries = &entry;
-  si.dataSize = sizeof(spec);
-  si.pData = &spec;
+  si.mapEntryCount = count;
+  si.pMapEntries = entries.data();
+  si.dataSize = count * sizeof(uint32_t);
+  si.pData = data.data();
   VkComputePipelineCreateInfo ci{};
   ci.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
   ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -98,7 +108,7 @@ TvkResult ensure_shadow_pipeline(TvkRenderer_T& r) {
         res != TVK_SUCCESS)
       return res;
   }
-  return make_compute(ctx, s.shadow_layout, k_spv_shadow_depth_comp, 0, s.shadow);
+  return make_compute(ctx, s.shadow_layout, k_spv_shadow_depth_comp, {0}, s.shadow);
 }
 
 TvkResult ensure_pipelines(TvkRenderer_T& r) {
@@ -173,14 +183,17 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   }
   auto& p = s.pipelines;
   TvkResult res = TVK_SUCCESS;
-  if (res == TVK_SUCCESS && !p[0]) res = make_compute(ctx, s.layout, k_spv_vertex_comp, 0, p[0]);
-  if (res == TVK_SUCCESS && !p[1]) res = make_compute(ctx, s.layout, k_spv_tile_depth_comp, 0, p[1]);
-  if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 0, p[2]);
-  if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, 0, p[3]);
-  if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 1, p[4]);
-  if (res == TVK_SUCCESS && !p[5]) res = make_compute(ctx, s.layout, k_spv_fine_comp, kSliceCapacity, p[5]);
-  if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 0, p[6]);
-  if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 1, p[7]);
+  if (res == TVK_SUCCESS && !p[0]) res = make_compute(ctx, s.layout, k_spv_vertex_comp, {0}, p[0]);
+  if (res == TVK_SUCCESS && !p[1]) res = make_compute(ctx, s.layout, k_spv_tile_depth_comp, {0}, p[1]);
+  if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {0}, p[2]);
+  if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, {0}, p[3]);
+  if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {1}, p[4]);
+  if (res == TVK_SUCCESS && !p[5])
+    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 0}, p[5]);
+  if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {0}, p[6]);
+  if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {1}, p[7]);
+  if (res == TVK_SUCCESS && !p[8])
+    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 1}, p[8]);
   return res;
 }
 
@@ -297,7 +310,7 @@ TvkResult ensure_composite_pipeline(TvkRenderer_T& r) {
 }
 
 TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint64_t vertices, uint64_t segments,
-                         bool capture) {
+                         bool capture, bool per_fragment) {
   Context& ctx = *r.ctx;
   State& s = *r.compute;
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -312,7 +325,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
                     "buffer range (%llu bytes)",
                     static_cast<unsigned long long>(vertices), width, height,
                     static_cast<unsigned long long>(max_range));
-  TvkResult res = grow(ctx, s.verts, std::max<uint64_t>(32 * vertices, 64), storage, Memory::device,
+  TvkResult res = grow(ctx, s.verts, std::max<uint64_t>((per_fragment ? 64 : 32) * vertices, 64), storage, Memory::device,
                        "hair compute vertices");
   if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, 16 * tiles, storage, Memory::device, "hair compute tiles");
   if (res == TVK_SUCCESS && s.entry_capacity < capacity) {
