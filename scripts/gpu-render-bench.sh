@@ -31,7 +31,7 @@ row() {  # name, then bench arguments
   local name=$1; shift
   echo "== $name: $*" >> "$OUT/summary.txt"
   if "$BENCH" render "$@" --json "$OUT/$name.json" > "$OUT/$name.log" 2>&1; then
-    grep -E '"(device|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|strands_drawn)"' "$OUT/$name.json" |
+    grep -E '"(device|shading|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|strands_drawn)"' "$OUT/$name.json" |
       tr -d '\n' >> "$OUT/summary.txt"
     echo >> "$OUT/summary.txt"
     sed -n '/"gpu_ms_passes"/,/}/p' "$OUT/$name.json" | tr -d '\n ' >> "$OUT/summary.txt"
@@ -60,12 +60,17 @@ row head-compute-1080p --sample head $HD $TIMED --png "$OUT/head-compute-1080p.p
 row 100k-compute-1080p --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED
 [ "${QUICK:-0}" = 1 ] && exit 0
 
-# The raster path on the same frames (speed only: it has no capture for the reference).
+# The raster path on the same frames; its error: its displayed frame against the reference layer blended over the same
+# frame drawn without hair (tressvk-bench builds both with the same options and frame count).
 row sample-raster-1080p --sample sphere $HD --frames 10 --warmup 5 --path raster --png "$OUT/sample-raster-1080p.png"
 [ -n "$RATBOY" ] && row ratboy4-raster-1080p --asset "$RATBOY" $HD --frames 10 --warmup 5 --animate shake --path raster
 # Sintel with her mesh (hair in front of and behind an opaque mesh).
 [ -n "$SINTEL" ] && row sintel6-compute-1080p --asset "$SINTEL" --mesh "$DATA/sintel/sintel.obj" --mesh-scale 0.0046 \
   $HD $TIMED --png "$OUT/sintel6-compute-1080p.png"
+# Kajiya-Kay per fragment instead of per vertex (time, and the error against the per-vertex-shaded reference).
+row sample-compute-1080p-fragment --sample sphere $HD $TIMED --shade fragment --png "$OUT/sample-compute-1080p-fragment.png"
+[ -n "$RATBOY" ] && row ratboy4-compute-1080p-fragment --asset "$RATBOY" $HD $TIMED --animate shake --shade fragment
+row 100k-compute-1080p-fragment --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --shade fragment
 # Speed against error: resolution and LOD.
 row sample-compute-540p --sample sphere --width 960 --height 540 $TIMED
 row sample-compute-2160p --sample sphere --width 3840 --height 2160 $TIMED

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,42 @@ double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
+}
+
+double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
+double srgb_encode(double v) {
+  v = std::clamp(v, 0.0, 1.0);
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+// The raster path's frame against the sorted reference: the reference layer (premultiplied linear) blended over
+// the same frame drawn without the hair (the host's target blends in linear), both as displayed, per RGB channel
+// in 1/255 over the pixels where the reference or the compute path's layer has hair.
+reference::LayerError compare_frame(const engine::Pixels& frame, const engine::Pixels& background,
+                                    const reference::HairLayer& ref, const reference::HairLayer& compute) {
+  reference::LayerError e;
+  std::vector<double> errors;
+  for (uint32_t y = 0; y < ref.height; ++y) {
+    for (uint32_t x = 0; x < ref.width; ++x) {
+      const size_t p = size_t{y} * ref.width + x;
+      const double* r = &ref.rgba[4 * p];
+      if (r[3] < 0.5 / 255.0 && compute.rgba[4 * p + 3] < 0.5 / 255.0) continue;
+      ++e.hair_pixels;
+      const auto f = frame.rgba8(x, y), b = background.rgba8(x, y);
+      for (int c = 0; c < 3; ++c) {
+        const double expected = srgb_encode(r[c] + (1.0 - std::clamp(r[3], 0.0, 1.0)) * srgb_decode(b[c] / 255.0));
+        errors.push_back(std::abs(255.0 * expected - f[c]));
+      }
+    }
+  }
+  if (errors.empty()) return e;
+  double sum = 0;
+  for (double v : errors) sum += v;
+  e.mean = sum / static_cast<double>(errors.size());
+  std::sort(errors.begin(), errors.end());
+  e.p99 = errors[std::min(errors.size() - 1, static_cast<size_t>(0.99 * static_cast<double>(errors.size())))];
+  e.max = errors.back();
+  return e;
 }
 
 }  // namespace
@@ -60,6 +97,9 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
   c->add_option("--device", o.device, "device index or name substring");
   c->add_flag("--validation", o.validation, "Vulkan validation + synchronization validation (any message fails)");
   c->add_flag("--no-reference", o.no_reference, "skip the reference (speed only)");
+  c->add_option("--shade", o.shade, "compute path: Kajiya-Kay per vertex or per fragment (the reference shades per vertex)")
+      ->check(CLI::IsMember({"vertex", "fragment"}))
+      ->capture_default_str();
   return c;
 }
 
@@ -110,6 +150,8 @@ int run_render_bench(const RenderBenchOptions& o) {
     }
 
     demo::DemoApp app(dev, d);
+    const uint32_t shade_flag = o.shade == "fragment" ? TVK_RASTER_SHADE_PER_FRAGMENT : 0u;
+    app.set_raster_flags(shade_flag);
     std::vector<double> hair_shadow, hair, shadow, shading;
     uint32_t strands = 0;
     app.run(o.warmup, [](demo::FrameReport&) {});
@@ -125,6 +167,7 @@ int run_render_bench(const RenderBenchOptions& o) {
     nlohmann::json j;
     j["device"] = dev.description();
     j["path"] = o.path;
+    j["shading"] = o.path == "compute" ? "per " + o.shade : "per fragment";
     j["groom"] = groom;
     j["width"] = o.width;
     j["height"] = o.height;
@@ -153,7 +196,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       j["memory_bytes"] = stats.memory_bytes;
       j["entry_capacity"] = stats.entry_capacity;
       if (!o.no_reference) {
-        app.set_raster_flags(TVK_RASTER_CAPTURE);
+        app.set_raster_flags(TVK_RASTER_CAPTURE | shade_flag);
         engine::Pixels frame;
         app.run(1, [&](demo::FrameReport& f) { frame = std::move(f.pixels); });
         if (!o.png.empty()) engine::write_png(o.png, frame);
@@ -182,6 +225,60 @@ int run_render_bench(const RenderBenchOptions& o) {
         j["sliced_tiles"] = stats.sliced_tiles;
         j["entries"] = stats.entries_requested;
       }
+    }
+    if (o.path == "raster" && !o.no_reference) {
+      // The same frame (same options, same number of frames: the simulation is deterministic) drawn by the compute
+      // path with a capture, for the reference layer, and by the raster path without the hair, for what lies behind
+      // it; then the raster path's own next frame.
+      const uint32_t before = o.warmup + o.frames;
+      engine::Pixels frame, background;
+      app.run(1, [&](demo::FrameReport& f) { frame = std::move(f.pixels); });
+      if (!o.png.empty()) engine::write_png(o.png, frame);
+      demo::Options dc = d;
+      dc.hair_path = demo::HairPath::compute;
+      dc.raster_flags = TVK_RASTER_CAPTURE;
+      dc.pass_timestamps = false;
+      demo::DemoApp capture_app(dev, dc);
+      engine::Pixels compute_frame;
+      uint32_t kc = 0;
+      capture_app.run(before + 1, [&](demo::FrameReport& f) {
+        if (++kc == before + 1) compute_frame = std::move(f.pixels);
+      });
+      TvkRasterCapture cap{};
+      if (tressvk_get_raster_capture(capture_app.renderer(), &cap) != TVK_SUCCESS)
+        throw std::runtime_error(tressvk_last_error(capture_app.plugin()));
+      const reference::StrandRasterInput in{cap.width, cap.height, cap.vertices_per_strand, cap.strands,
+                                            cap.vertices, cap.host_depth};
+      const reference::HairLayer ref = reference::render_strands_reference(in);
+      const reference::HairLayer compute = reference::layer_from_half(cap.width, cap.height, cap.layer);
+      demo::Options db = d;
+      db.draw_hair = false;
+      db.pass_timestamps = false;
+      demo::DemoApp background_app(dev, db);
+      uint32_t k = 0;
+      background_app.run(before + 1, [&](demo::FrameReport& f) {
+        if (++k == before + 1) background = std::move(f.pixels);
+      });
+      const reference::LayerError e = compare_frame(frame, background, ref, compute);
+      // The measure's own check: the compute path's frame over its own frame without hair must come out at about
+      // its layer error (a frame that does not line up, or a wrong blend, shows here first).
+      demo::Options dcb = dc;
+      dcb.draw_hair = false;
+      dcb.raster_flags = 0;
+      demo::DemoApp compute_background_app(dev, dcb);
+      engine::Pixels compute_background;
+      uint32_t kb = 0;
+      compute_background_app.run(before + 1, [&](demo::FrameReport& f) {
+        if (++kb == before + 1) compute_background = std::move(f.pixels);
+      });
+      const reference::LayerError check = compare_frame(compute_frame, compute_background, ref, compute);
+      j["check_compute_frame_error_mean"] = check.mean;
+      j["check_compute_frame_error_p99"] = check.p99;
+      j["error_mean"] = e.mean;
+      j["error_p99"] = e.p99;
+      j["error_max"] = e.max;
+      j["hair_pixels"] = e.hair_pixels;
+      j["error_measure"] = "displayed frame RGB against the reference layer over the frame without hair";
     }
     std::printf("%s\n", j.dump(2).c_str());
     if (!o.json.empty()) {

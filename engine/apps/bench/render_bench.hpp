@@ -15,6 +15,7 @@ struct RenderBenchOptions {
   float mesh_scale = 1.0f;
   uint32_t width = 1920, height = 1080;
   std::string path = "compute";  // compute or raster
+  std::string shade = "vertex";  // compute path: Kajiya-Kay per "vertex" (default) or per "fragment"
   uint32_t frames = 30;         // timed frames, back to back
   uint32_t warmup = 10;
   std::string sample = "head";  // no --asset: the bundled head sample, or the sphere sample (long128 groom)

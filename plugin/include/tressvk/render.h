@@ -201,6 +201,8 @@ TVK_API TvkResult tressvk_cmd_draw_hair(TvkRenderer renderer, VkCommandBuffer co
  * missing), counted in TvkRasterStats.dropped_entries, and never written out of bounds. */
 #define TVK_RASTER_CAPTURE 0x1u          /* keep a copy of this call's vertices, host depth and layer (tests) */
 #define TVK_RASTER_REVERSE_STRANDS 0x2u  /* submit the strands in reversed order (order-independence test) */
+#define TVK_RASTER_SHADE_PER_FRAGMENT 0x4u /* Kajiya-Kay per fragment instead of per vertex (slower, see
+                                            docs/rendering.md; the default shades per vertex) */
 
 typedef struct TvkRasterInfo {
   size_t struct_size;                 /* sizeof(TvkRasterInfo) */

@@ -48,7 +48,8 @@ void main() {
     const uint texel = uint(x.y) * kDomSize + uint(x.x);
     const float depth = mix(a.depth, b.depth, t);
     if (kPass == 0u) {
-      atomicMin(dom[texel], floatBitsToUint(max(depth, 0.0)));
+      const uint bits = floatBitsToUint(max(depth, 0.0));
+      if (dom[texel] > bits) atomicMin(dom[texel], bits);  // read first: skip the atomic when already nearer
     } else {
       const float along = float(i + uint(t > 0.5)) / float(n - 1u);
       const float width = m.shape.y * mix(1.0, m.shape.z, along) * dc.lod.x * mix(a.per_metre, b.per_metre, t);

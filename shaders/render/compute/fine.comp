@@ -2,37 +2,106 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 // Compute rasterizer, pass 5: one workgroup per 8 x 8 tile, one thread per pixel. The tile's segments are
-// composited front to back in depth order:
-// - a tile with at most kCap segments sorts them all in shared memory (bitonic sort on the depth key);
-// - a fuller tile is cut into depth slices: a histogram of its keys over kBins bins between its nearest and
-//   farthest key, then consecutive bins grouped into slices of at most kCap segments, each loaded, sorted and
-//   composited in turn (ties in depth broken by the segment's own screen position, so the order never depends
-//   on the submission order) (a single bin fuller than kCap keeps its kCap nearest-loaded entries and counts the rest
-//   in counters[3]);
-// - every pixel evaluates each segment's analytic coverage (the pixel centre's distance to the segment against
-//   its interpolated width), tests the fragment's interpolated depth against the host depth (LESS_OR_EQUAL), and
-//   blends premultiplied colour "under" what it has; a pixel stops at alpha >= 1 - 0.5/255, the tile (and the
-//   remaining slices) when all its pixels have.
+// composited front to back in depth order, a small slice at a time, so that a tile whose pixels are opaque after
+// a few fragments orders only its nearest entries:
+// - a tile with at most kSlice entries is one slice;
+// - a fuller tile takes a histogram of its keys over kBins bins between its nearest and farthest key, then
+//   loads its nearest bins holding at most kCap entries into shared memory in bin order (a counting sort; a
+//   single bin fuller than kCap keeps kCap entries and counts the rest in counters[3]), and reloads the next
+//   bins only if its pixels are not all opaque by then;
+// - a slice is consecutive bins holding at most kSlice entries (or one fuller bin), ranked by (depth key, a key
+//   of the segment's own screen position, so the order never depends on the submission order, then position)
+//   and composited 64 at a time; the tile stops when all its pixels are opaque.
+// Per pixel, every segment's analytic coverage (the pixel centre's distance to the segment against its
+// interpolated width), its interpolated depth tested against the host depth (LESS_OR_EQUAL), and the fragment
+// blended "under" what the pixel has through a window of kReorder fragments ordered by the pixel's own depth: the
+// tile's order is each segment's depth near the tile centre, which two crossing segments can invert at a pixel;
+// the window puts such near neighbours back in the pixel's order (the fragment leaving a full window is its
+// nearest). A pixel stops when its transmittance (window included) is below 0.5/255.
 // Each pixel point belongs to the segment its centre projects onto (t in [0, 1); the strand's last segment
 // includes its tip), so consecutive segments of a strand never both cover it along the strand.
 layout(local_size_x = 8, local_size_y = 8) in;
-// Segments sorted at once per tile slice (kSliceCapacity in plugin/src/render/compute/state.hpp, a power of two).
-layout(constant_id = 0) const uint kCap = 1024u;
+// Entries a tile holds in shared memory at once (kSliceCapacity in plugin/src/render/compute/state.hpp).
+layout(constant_id = 0) const uint kCap = 256u;
+// Entries per slice (kSliceEntries in state.hpp).
+layout(constant_id = 1) const uint kSlice = 64u;
+// Fragments in the per-pixel reorder window (kReorderWindow in state.hpp); 0: blend in the tile's order.
+layout(constant_id = 2) const uint kReorder = 4u;
+// 1: Kajiya-Kay per fragment from the point and tangent interpolated along the segment (vertex.comp writes
+// them after the drawn vertices); 0: the vertex colours interpolated (the default).
+layout(constant_id = 3) const uint kPerFragment = 0u;
 #include "render/compute/raster_layout.glsl"
+#include "render/compute/shade.glsl"
 
 const uint kBins = 256u;
-const float kOpaque = 1.0 - 0.5 / 255.0;
+const uint kWindow = kReorder > 0u ? kReorder : 1u;
+const float kClear = 0.5 / 255.0;  // transmittance below which a pixel is opaque
+const float kEmpty = 1e31;         // depth of an empty window slot
 
 shared uint s_key[kCap];
 shared uint s_seg[kCap];
-shared uint s_tie[kCap];  // second sort key: segments with the same depth key keep an order of their own
-shared uint s_hist[kBins];
-shared vec4 s_p0[64], s_p1[64], s_c0[64], s_c1[64];  // the chunk of segments being composited
+shared uint s_hist[kBins];  // per bin: its count; for the bins in shared memory, the end of their entries
+shared vec4 s_p0[64], s_p1[64];  // the chunk of segments being composited, in order
+shared uvec4 s_c[64];            // colour at the start and its change along the segment, half floats
 shared vec2 s_p2[64];
-shared uint s_count, s_done, s_kmin, s_kmax, s_b1, s_frags, s_hair;
+const uint kShadeSlots = kPerFragment != 0u ? 64u : 1u;
+shared vec4 s_pa[kShadeSlots], s_ta[kShadeSlots], s_dp[kShadeSlots], s_dt[kShadeSlots];  // per fragment only
+shared uint s_group[kShadeSlots];
+shared uint s_count, s_done, s_kmin, s_kmax, s_w1, s_b1, s_frags, s_hair;
 
 uint bin_of(uint key, uint kmin, uint kmax) {
   return min(uint(float(key - kmin) / float(kmax - kmin + 1u) * float(kBins)), kBins - 1u);
+}
+
+// Any fixed property of the segment itself (not its index, which depends on the submission order).
+uint tie_of(uint seg, uint n) {
+  const uint va = seg / (n - 1u) * n + seg % (n - 1u);
+  return floatBitsToUint(verts[2u * va].x) ^ (floatBitsToUint(verts[2u * va + 2u].y) * 0x9e3779b9u);
+}
+
+vec3 color = vec3(0.0);
+float alpha = 0.0;
+float trans = 1.0;  // 1 - alpha of everything taken so far, window included
+float wz[kWindow];  // the window, nearest first (kEmpty: free)
+uvec2 wc[kWindow];  // premultiplied rgb and alpha, half floats
+
+void emit(vec4 c) {
+  color += (1.0 - alpha) * c.rgb;
+  alpha += (1.0 - alpha) * c.a;
+}
+
+vec4 unpack(uvec2 c) { return vec4(unpackHalf2x16(c.x), unpackHalf2x16(c.y)); }
+
+void take(float z, vec4 c) {
+  trans *= 1.0 - c.a;
+  if (kReorder == 0u) {
+    emit(c);
+    return;
+  }
+  if (wz[kWindow - 1u] < kEmpty) {  // full: the nearest of the window and this fragment leaves
+    if (z < wz[0]) {
+      emit(c);
+      return;
+    }
+    emit(unpack(wc[0]));
+    for (uint k = 0u; k + 1u < kWindow; ++k) {
+      wz[k] = wz[k + 1u];
+      wc[k] = wc[k + 1u];
+    }
+    wz[kWindow - 1u] = kEmpty;
+  }
+  float cz = z;
+  uvec2 cc = uvec2(packHalf2x16(c.rg), packHalf2x16(c.ba));
+  for (uint k = 0u; k < kWindow; ++k) {  // insertion, after equal depths (arrival order)
+    if (cz < wz[k]) {
+      const float tz = wz[k];
+      const uvec2 tc = wc[k];
+      wz[k] = cz;
+      wc[k] = cc;
+      cz = tz;
+      cc = tc;
+    }
+  }
 }
 
 void main() {
@@ -53,8 +122,10 @@ void main() {
   }
   const uint n = dc.counts.x;
   const vec2 centre = vec2(p) + 0.5;
-  vec3 color = vec3(0.0);
-  float alpha = 0.0;
+  for (uint k = 0u; k < kWindow; ++k) {
+    wz[k] = kEmpty;
+    wc[k] = uvec2(0u);
+  }
   uint frags = 0u;
   bool done = !inside;
 
@@ -68,9 +139,15 @@ void main() {
   for (uint b = lid; b < kBins; b += 64u) s_hist[b] = 0u;
   barrier();
   if (done) atomicAdd(s_done, 1u);
-  const bool sliced = count > kCap;
+  const bool sliced = count > kSlice;
   uint kmin = 0u, kmax = 0u;
-  if (sliced) {
+  if (!sliced) {
+    for (uint e = lid; e < count; e += 64u) {
+      const uvec2 entry = entries[first + e];
+      s_key[e] = entry.x;
+      s_seg[e] = entry.y;
+    }
+  } else {
     uint lmin = 0xffffffffu, lmax = 0u;
     for (uint e = lid; e < count; e += 64u) {
       const uint key = entries[first + e].x;
@@ -91,121 +168,143 @@ void main() {
   }
   barrier();
 
-  uint b0 = 0u;
-  while (b0 < kBins) {
-    // The next slice: bins [b0, b1) with at most kCap entries (at least one bin).
-    if (lid == 0u) {
-      uint b = b0, acc = 0u;
-      if (!sliced) {
-        b = kBins;
-      } else {
-        while (b < kBins && (acc == 0u || acc + s_hist[b] <= kCap)) acc += s_hist[b++];
+  uint w0 = 0u;  // first bin in shared memory
+  bool stop = false;
+  while (!stop && w0 < kBins) {
+    if (sliced) {
+      // Bins [w0, w1) into shared memory: at most kCap entries (at least one bin with entries); their counts
+      // become their starts, then (after the scatter) their ends.
+      if (lid == 0u) {
+        uint b = w0, acc = 0u;
+        while (b < kBins) {
+          const uint c = s_hist[b];
+          if (acc != 0u && acc + c > kCap) break;
+          s_hist[b] = acc;
+          acc += c;
+          ++b;
+        }
+        s_w1 = b;
       }
-      s_b1 = b;
-      s_count = 0u;
-    }
-    barrier();
-    const uint b1 = s_b1;
-    for (uint e = lid; e < count; e += 64u) {
-      const uvec2 entry = entries[first + e];
-      bool take = true;
-      if (sliced) {
+      barrier();
+      const uint w1 = s_w1;
+      for (uint e = lid; e < count; e += 64u) {
+        const uvec2 entry = entries[first + e];
         const uint bin = bin_of(entry.x, kmin, kmax);
-        take = bin >= b0 && bin < b1;
-      }
-      if (take) {
-        const uint at = atomicAdd(s_count, 1u);
-        if (at < kCap) {
-          s_key[at] = entry.x;
-          s_seg[at] = entry.y;
-          // Any fixed property of the segment itself (not its index, which depends on the submission order).
-          const uint va = entry.y / (n - 1u) * n + entry.y % (n - 1u);
-          s_tie[at] = floatBitsToUint(verts[2u * va].x) ^ (floatBitsToUint(verts[2u * va + 2u].y) * 0x9e3779b9u);
+        if (bin >= w0 && bin < w1) {
+          const uint at = atomicAdd(s_hist[bin], 1u);
+          if (at < kCap) {
+            s_key[at] = entry.x;
+            s_seg[at] = entry.y;
+          } else {
+            atomicAdd(counters[3], 1u);  // one bin fuller than kCap
+          }
         }
       }
+      barrier();
+      if (lid == 0u) s_hist[w1 - 1u] = min(s_hist[w1 - 1u], kCap);
     }
-    barrier();
-    const uint loaded = s_count;
-    const uint m = min(loaded, kCap);
-    if (lid == 0u && loaded > kCap) atomicAdd(counters[3], loaded - kCap);
-    uint size = 1u;
-    while (size < m) size <<= 1u;
-    for (uint e = m + lid; e < size; e += 64u) {
-    s_key[e] = 0xffffffffu;
-    s_tie[e] = 0xffffffffu;
-  }
-    barrier();
-    // Bitonic sort of [0, size) by key, ascending (nearest first).
-    for (uint k = 2u; k <= size; k <<= 1u) {
-      for (uint j = k >> 1u; j > 0u; j >>= 1u) {
-        for (uint i = lid; i < size; i += 64u) {
-          const uint l = i ^ j;
-          if (l > i) {
-            const uint ki = s_key[i], kl = s_key[l], ti = s_tie[i], tl = s_tie[l];
-            const bool greater = ki > kl || (ki == kl && ti > tl);
-            if (greater == ((i & k) == 0u)) {
-              s_key[i] = kl;
-              s_key[l] = ki;
-              s_tie[i] = tl;
-              s_tie[l] = ti;
-              const uint si = s_seg[i];
-              s_seg[i] = s_seg[l];
-              s_seg[l] = si;
+    const uint w1 = sliced ? s_w1 : kBins;
+    uint b0 = w0;
+    while (b0 < w1) {
+      // The next slice: bins [b0, b1) with at most kSlice entries (at least one bin).
+      if (lid == 0u) {
+        uint b = sliced ? b0 : w1;
+        uint acc = 0u;
+        while (b < w1) {
+          const uint c = s_hist[b] - (b == w0 ? 0u : s_hist[b - 1u]);
+          if (acc != 0u && acc + c > kSlice) break;
+          acc += c;
+          ++b;
+        }
+        s_b1 = b;
+      }
+      barrier();
+      const uint b1 = s_b1;
+      const uint o0 = !sliced || b0 == w0 ? 0u : s_hist[b0 - 1u];
+      const uint m = (sliced ? s_hist[b1 - 1u] : count) - o0;
+      // Front-to-back compositing of the slice, 64 segments at a time: each thread ranks its entries (the ones
+      // before it by key, tie key and position) and puts those of this chunk in shared memory in order (in the
+      // form the per-pixel test needs), then every pixel walks them.
+      for (uint base = 0u; base < m; base += 64u) {
+        for (uint i = lid; i < m; i += 64u) {
+          const uint ki = s_key[o0 + i], seg = s_seg[o0 + i];
+          uint ti = 0xffffffffu;
+          uint r = 0u;
+          for (uint j = 0u; j < m; ++j) {
+            const uint kj = s_key[o0 + j];
+            if (kj < ki) {
+              ++r;
+            } else if (kj == ki && j != i) {
+              if (ti == 0xffffffffu) ti = tie_of(seg, n);
+              const uint tj = tie_of(s_seg[o0 + j], n);
+              if (tj < ti || (tj == ti && j < i)) ++r;
             }
+          }
+          const uint slot = r - base;
+          if (slot >= 64u) continue;
+          const uint si = seg % (n - 1u);
+          const uint va = seg / (n - 1u) * n + si;
+          const vec4 a = verts[2u * va], ca = verts[2u * va + 1u];
+          const vec4 b = verts[2u * va + 2u], cb = verts[2u * va + 3u];
+          const vec2 d = b.xy - a.xy;
+          const vec4 dcol = cb - ca;
+          s_p0[slot] = vec4(a.xy, d);
+          s_p1[slot] = vec4(a.z, b.z - a.z, a.w, b.w - a.w);
+          s_p2[slot] = vec2(1.0 / dot(d, d), si + 2u >= n ? 1.0 : 0.0);
+          s_c[slot] = uvec4(packHalf2x16(ca.rg), packHalf2x16(ca.ba), packHalf2x16(dcol.rg), packHalf2x16(dcol.ba));
+          if (kPerFragment != 0u) {  // point (xyz, along) and tangent (xyz, tint) at a, and their change to b
+            const uint at = 2u * (pc.params.y * n + va);
+            const vec4 pa = verts[at], ta = verts[at + 1u], pb = verts[at + 2u], tb = verts[at + 3u];
+            s_pa[slot] = pa;
+            s_ta[slot] = ta;
+            s_dp[slot] = pb - pa;
+            s_dt[slot] = tb - ta;
+            uint strand = seg / (n - 1u);
+            if ((pc.params.z & kFlagReverse) != 0u) strand = pc.params.y - 1u - strand;
+            s_group[slot] = min(guide_info[strand % dc.counts.y].x, 15u);
           }
         }
         barrier();
-      }
-    }
-    // Front-to-back compositing of the slice, 64 segments at a time: each thread loads one segment into shared
-    // memory (already in the form the per-pixel test needs), then every pixel walks the 64 in order.
-    for (uint base = 0u; base < m; base += 64u) {
-      barrier();
-      const bool all_done = s_done == 64u;
-      barrier();
-      if (all_done) break;
-      if (base + lid < m) {
-        const uint seg = s_seg[base + lid];
-        const uint i = seg % (n - 1u);
-        const uint va = seg / (n - 1u) * n + i;
-        const vec4 a = verts[2u * va], ca = verts[2u * va + 1u];
-        const vec4 b = verts[2u * va + 2u], cb = verts[2u * va + 3u];
-        const vec2 d = b.xy - a.xy;
-        s_p0[lid] = vec4(a.xy, d);
-        s_p1[lid] = vec4(a.z, b.z - a.z, a.w, b.w - a.w);
-        s_p2[lid] = vec2(1.0 / dot(d, d), i + 2u >= n ? 1.0 : 0.0);
-        s_c0[lid] = ca;
-        s_c1[lid] = cb - ca;
-      }
-      barrier();
-      if (done) continue;
-      const uint chunk = min(64u, m - base);
-      for (uint j = 0u; j < chunk; ++j) {
-        const vec4 p0 = s_p0[j];
-        const vec2 rel = centre - p0.xy;
-        const float t = dot(rel, p0.zw) * s_p2[j].x;
-        if (t < 0.0 || t > 1.0 || (t == 1.0 && s_p2[j].y == 0.0)) continue;
-        const vec4 p1 = s_p1[j];
-        const float cov = coverage(length(rel - t * p0.zw), p1.z + t * p1.w);
-        if (cov <= 0.0) continue;
-        if (p1.x + t * p1.y > zhost) continue;  // behind the host's opaque surface
-        const vec4 c = s_c0[j] + t * s_c1[j];
-        const float fa = cov * c.a;
-        color += (1.0 - alpha) * fa * c.rgb;
-        alpha += (1.0 - alpha) * fa;
-        ++frags;
-        if (alpha >= kOpaque) {
-          done = true;
-          atomicAdd(s_done, 1u);
-          break;
+        if (!done) {
+          const uint chunk = min(64u, m - base);
+          for (uint j = 0u; j < chunk; ++j) {
+            const vec4 p0 = s_p0[j];
+            const vec2 rel = centre - p0.xy;
+            const vec2 p2 = s_p2[j];
+            const float t = dot(rel, p0.zw) * p2.x;
+            if (t < 0.0 || t > 1.0 || (t == 1.0 && p2.y == 0.0)) continue;
+            const vec4 p1 = s_p1[j];
+            const float cov = coverage(length(rel - t * p0.zw), p1.z + t * p1.w);
+            if (cov <= 0.0) continue;
+            const float z = p1.x + t * p1.y;
+            if (z > zhost) continue;  // behind the host's opaque surface
+            const uvec4 cp = s_c[j];
+            vec4 c = unpack(cp.xy) + t * unpack(cp.zw);
+            if (kPerFragment != 0u) {
+              const vec4 pt = s_pa[j] + t * s_dp[j], tt = s_ta[j] + t * s_dt[j];
+              c.rgb = shade_hair(pt.xyz, tt.xyz, pt.w, dc.materials[s_group[j]], tt.w);
+            }
+            const float fa = cov * c.a;
+            take(z, vec4(fa * c.rgb, fa));
+            ++frags;
+            if (trans <= kClear) {
+              done = true;
+              atomicAdd(s_done, 1u);
+              break;
+            }
+          }
         }
+        barrier();  // the chunk is read; s_done is final until the next chunk's compositing
+        stop = s_done == 64u;
+        if (stop) break;
       }
+      if (stop) break;
+      b0 = b1;
     }
-    barrier();
-    const bool stop = s_done == 64u;
-    barrier();
-    if (stop) break;
-    b0 = b1;
+    w0 = w1;
+  }
+  for (uint k = 0u; k < kWindow; ++k) {
+    if (wz[k] < kEmpty) emit(unpack(wc[k]));
   }
   if (inside) image[pixel] = uvec2(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, alpha)));
   atomicAdd(s_frags, frags);

@@ -32,6 +32,7 @@ const uint kTile = 8u;          // tile edge in pixels (8 x 8 = one workgroup of
 const uint kFlagCapture = 1u;
 const uint kFlagReverse = 2u;
 const uint kFlagShadowed = 4u;   // a shadow map was given: build and read the deep opacity map
+const uint kFlagPerFragment = 8u; // shade per fragment in fine.comp (TVK_RASTER_SHADE_PER_FRAGMENT)
 const uint kDomSize = 512u;
 const uint kDomLayers = 4u;
 const float kDomUnit = 1024.0;

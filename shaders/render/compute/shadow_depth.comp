@@ -50,7 +50,9 @@ void main() {
     for (int o = -int(taps); o <= int(taps); ++o) {
       const vec2 y = x + across * (half_width * float(o) / float(taps));
       if (any(lessThan(y, vec2(0.0))) || any(greaterThanEqual(y, vec2(pc.size.xy)))) continue;
-      atomicMin(depth[uint(y.y) * pc.size.x + uint(y.x)], floatBitsToUint(z));
+      const uint texel = uint(y.y) * pc.size.x + uint(y.x);
+      // Read first: most samples of dense hair are behind what the texel holds, and skip the atomic.
+      if (depth[texel] > floatBitsToUint(z)) atomicMin(depth[texel], floatBitsToUint(z));
     }
   }
 }

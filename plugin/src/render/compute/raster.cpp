@@ -30,6 +30,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: depth_view (the host's opaque depth) is required", fn);
   const TvkDrawInfo& draw = *info->draw;
   const bool capture = (info->flags & TVK_RASTER_CAPTURE) != 0;
+  const bool per_fragment = (info->flags & TVK_RASTER_SHADE_PER_FRAGMENT) != 0;
   if (TvkResult res = begin_call(r, fn); res != TVK_SUCCESS) return res;
   if (TvkResult res = ensure_pipelines(r); res != TVK_SUCCESS) return res;
   State& s = *r.compute;
@@ -44,7 +45,8 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   const uint32_t total = asset.cpu.total_strands();
   const uint32_t width = draw.view->width, height = draw.view->height;
   // Sized for the whole groom (not this frame's LOD), so a changing LOD never reallocates.
-  if (TvkResult res = ensure_buffers(r, width, height, uint64_t{total} * n, uint64_t{total} * (n - 1), capture);
+  if (TvkResult res = ensure_buffers(r, width, height, uint64_t{total} * n, uint64_t{total} * (n - 1), capture,
+                                      per_fragment);
       res != TVK_SUCCESS)
     return res;
   const VkDeviceSize constants_offset = store_constants(r, dc);
@@ -100,7 +102,8 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   const uint64_t segments = uint64_t{drawn} * (n - 1);
   Push push{{width, height, tiles_x, tiles_y},
             {s.entry_capacity, drawn,
-             (info->flags & (TVK_RASTER_CAPTURE | TVK_RASTER_REVERSE_STRANDS)) | (shadowed ? kFlagShadowed : 0u),
+             (info->flags & (TVK_RASTER_CAPTURE | TVK_RASTER_REVERSE_STRANDS)) | (shadowed ? kFlagShadowed : 0u) |
+                 (per_fragment ? kFlagPerFragment : 0u),
              static_cast<uint32_t>(segments)}};
 
   // The previous frame's raster and composite calls used the same buffers: wait for them (and make their
@@ -160,7 +163,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
   compute_to_compute(ctx, cmd);
   next("render.bin_scatter");
-  bind(Pass::fine);
+  bind(per_fragment ? Pass::fine_per_fragment : Pass::fine);
   ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
   ctx.time_end(cmd, timed, "render.fine");
   // The layer for the composite call's fragment shader; the counters (and captures) for the copies below.

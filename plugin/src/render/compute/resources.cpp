@@ -8,6 +8,8 @@
 #include "tressvk_render_spirv.h"
 
 #include <algorithm>
+#include <array>
+#include <initializer_list>
 #include <new>
 
 namespace tressvk::render::compute {
@@ -15,9 +17,10 @@ namespace tressvk::render::compute {
 namespace {
 
 template <size_t N>
-TvkResult make_compute(Context& ctx, VkPipelineLayout layout, const uint32_t (&code)[N], uint32_t spec,
-                       VkPipeline& out) {
-  return create_compute_pipeline(ctx, layout, spirv(code), std::span<const uint32_t>(&spec, 1),
+TvkResult make_compute(Context& ctx, VkPipelineLayout layout, const uint32_t (&code)[N],
+                       std::initializer_list<uint32_t> specs, VkPipeline& out) {
+  // Specialization constants 0, 1, ... in order.
+  return create_compute_pipeline(ctx, layout, spirv(code), std::span<const uint32_t>(specs.begin(), specs.size()),
                                  "vkCreateComputePipelines (hair compute)", out);
 }
 
@@ -71,7 +74,7 @@ TvkResult ensure_shadow_pipeline(TvkRenderer_T& r) {
         res != TVK_SUCCESS)
       return res;
   }
-  return make_compute(ctx, s.shadow_layout, k_spv_shadow_depth_comp, 0, s.shadow);
+  return make_compute(ctx, s.shadow_layout, k_spv_shadow_depth_comp, {0}, s.shadow);
 }
 
 TvkResult ensure_pipelines(TvkRenderer_T& r) {
@@ -146,14 +149,17 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   }
   auto& p = s.pipelines;
   TvkResult res = TVK_SUCCESS;
-  if (res == TVK_SUCCESS && !p[0]) res = make_compute(ctx, s.layout, k_spv_vertex_comp, 0, p[0]);
-  if (res == TVK_SUCCESS && !p[1]) res = make_compute(ctx, s.layout, k_spv_tile_depth_comp, 0, p[1]);
-  if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 0, p[2]);
-  if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, 0, p[3]);
-  if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, 1, p[4]);
-  if (res == TVK_SUCCESS && !p[5]) res = make_compute(ctx, s.layout, k_spv_fine_comp, kSliceCapacity, p[5]);
-  if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 0, p[6]);
-  if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, 1, p[7]);
+  if (res == TVK_SUCCESS && !p[0]) res = make_compute(ctx, s.layout, k_spv_vertex_comp, {0}, p[0]);
+  if (res == TVK_SUCCESS && !p[1]) res = make_compute(ctx, s.layout, k_spv_tile_depth_comp, {0}, p[1]);
+  if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {0}, p[2]);
+  if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, {0}, p[3]);
+  if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {1}, p[4]);
+  if (res == TVK_SUCCESS && !p[5])
+    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 0}, p[5]);
+  if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {0}, p[6]);
+  if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {1}, p[7]);
+  if (res == TVK_SUCCESS && !p[8])
+    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 1}, p[8]);
   return res;
 }
 
@@ -200,7 +206,7 @@ TvkResult ensure_composite_pipeline(TvkRenderer_T& r) {
 }
 
 TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint64_t vertices, uint64_t segments,
-                         bool capture) {
+                         bool capture, bool per_fragment) {
   Context& ctx = *r.ctx;
   State& s = *r.compute;
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -215,7 +221,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
                     "buffer range (%llu bytes)",
                     static_cast<unsigned long long>(vertices), width, height,
                     static_cast<unsigned long long>(max_range));
-  TvkResult res = grow(ctx, s.verts, std::max<uint64_t>(32 * vertices, 64), storage, Memory::device,
+  TvkResult res = grow(ctx, s.verts, std::max<uint64_t>((per_fragment ? 64 : 32) * vertices, 64), storage, Memory::device,
                        "hair compute vertices");
   if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, 16 * tiles, storage, Memory::device, "hair compute tiles");
   if (res == TVK_SUCCESS && s.entry_capacity < capacity) {

@@ -15,7 +15,9 @@ enum Binding : uint32_t {
   kVerts = 7, kTiles = 8, kEntries = 9, kCounters = 10, kImage = 11, kCapture = 12, kDom = 13, kBindingCount = 14
 };
 
-enum class Pass : uint32_t { vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, pass_count };
+enum class Pass : uint32_t {
+  vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, fine_per_fragment, pass_count
+};
 
 struct Push {
   uint32_t size[4];    // width, height, tiles x, tiles y
@@ -23,11 +25,16 @@ struct Push {
 };
 
 constexpr uint32_t kTile = 8;
-constexpr uint32_t kSliceCapacity = 256;  // fine.comp kCap (a specialization constant): segments sorted at once per tile slice
+// fine.comp's specialization constants: entries a tile holds in shared memory (kCap), entries per depth slice
+// (kSlice), and fragments in the per-pixel reorder window (kReorder, 0 off).
+constexpr uint32_t kSliceCapacity = 256;
+constexpr uint32_t kSliceEntries = 64;
+constexpr uint32_t kReorderWindow = 4;
 constexpr uint32_t kCounterCount = 8;
 constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster_layout.glsl)
 constexpr uint32_t kDomLayers = 4;
 constexpr uint32_t kFlagShadowed = 4;
+constexpr uint32_t kFlagPerFragment = 8;  // raster_layout.glsl: TVK_RASTER_SHADE_PER_FRAGMENT
 
 struct State {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
@@ -61,9 +68,10 @@ TvkResult ensure_composite_pipeline(TvkRenderer_T& r);
 TvkResult ensure_shadow_pipeline(TvkRenderer_T& r);
 TvkResult grow(Context& ctx, GpuBuffer& buffer, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory,
                const char* name);
-// Grows the buffers for a view of width x height and `vertices` strand vertices / `segments` segments.
+// Grows the buffers for a view of width x height and `vertices` strand vertices / `segments` segments (twice the
+// vertex data when shading per fragment: the point and tangent follow the screen data).
 TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint64_t vertices, uint64_t segments,
-                         bool capture);
+                         bool capture, bool per_fragment);
 uint64_t memory_bytes(const State& s);
 // Records one VkMemoryBarrier2 from (src_stage, src_access) to (dst_stage, dst_access).
 void memory_barrier(Context& ctx, VkCommandBuffer cmd, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,

@@ -1,0 +1,44 @@
+# cmake -P script: `tressvk-bench render` on lavapipe with validation + synchronization validation, small view,
+# both paths. The compute path's JSON holds the issue's keys and meets the error targets; the raster path's error
+# is measured (its frame against the reference layer over the same frame without hair), and the measure's own
+# check (the compute path's frame through the same comparison) stays near the compute path's layer error.
+foreach(path compute raster)
+  set(json "${OUT_DIR}/${path}.json")
+  file(REMOVE "${json}")
+  file(MAKE_DIRECTORY "${OUT_DIR}")
+  execute_process(COMMAND "${BENCH}" render --sample sphere --guides 200 --follows 3 --width 160 --height 120
+                          --frames 2 --warmup 1 --path ${path} --validation --json "${json}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "tressvk-bench render --path ${path} failed (${rc}):\n${err}")
+  endif()
+  file(READ "${json}" j)
+  foreach(key device path width height strands_drawn gpu_ms_shadow gpu_ms_shading error_mean error_p99 error_max
+              hair_pixels)
+    string(JSON v ERROR_VARIABLE missing GET "${j}" ${key})
+    if(missing OR v STREQUAL "" OR v STREQUAL "null")
+      message(FATAL_ERROR "--path ${path}: key ${key} missing or null in ${json}")
+    endif()
+  endforeach()
+  string(JSON mean GET "${j}" error_mean)
+  string(JSON p99 GET "${j}" error_p99)
+  string(JSON pixels GET "${j}" hair_pixels)
+  message("--path ${path}: error mean ${mean}/255, p99 ${p99}/255 over ${pixels} hair pixels")
+  if(pixels LESS 200)
+    message(FATAL_ERROR "--path ${path}: only ${pixels} hair pixels")
+  endif()
+  if(path STREQUAL "compute")
+    # The issue's targets, not a tolerance (compute_test.cpp says why they hold).
+    if(mean GREATER 1.0 OR p99 GREATER 8.0)
+      message(FATAL_ERROR "compute path: error mean ${mean} or p99 ${p99} over the targets 1 / 8")
+    endif()
+  else()
+    string(JSON check GET "${j}" check_compute_frame_error_mean)
+    message("raster path: the measure's check on the compute path's frame, mean ${check}/255")
+    # Measured 0.3-0.4/255 (lavapipe and an NVIDIA H100): 8-bit frames and the composite's blend; frames that do
+    # not line up or a wrong blend formula move it by whole levels.
+    if(check GREATER 1.5)
+      message(FATAL_ERROR "raster path: the frame comparison's own check is off (${check}/255)")
+    endif()
+  endif()
+endforeach()
