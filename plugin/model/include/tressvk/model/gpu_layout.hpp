@@ -1,6 +1,6 @@
-// Host mirror of shaders/sim/layout.glsl: the std430 structs, with static_asserts on every size and offset (change
-// both files together). Binding numbers, specialization constant ids, feature bits and the strand block come from
-// gpu_layout.h, which the shaders include too.
+// Host mirror of shaders/sim/layout.glsl: binding numbers, specialization constant ids, feature bits and the
+// std430 structs, with static_asserts on every size and offset. Change both files together. The numbers are defined
+// once in gpu_layout.h, which the shaders include too; the enums below are asserted equal to it (end of file).
 //
 // Header-only and Vulkan-free so that the CPU reference (plugin/reference) can fill these structs too
 // (model::to_gpu), which keeps one conversion from the frame planner's double-precision substeps to what the
@@ -19,42 +19,42 @@ namespace tressvk::sim {
 // ---- descriptor set 0 bindings (all storage buffers) ----
 enum Binding : uint32_t {
   // Per-vertex buffers use the blocked layout below; sizes are padded_strands(...) * N.
-  kBindingPositions = TVK_BINDING_POSITIONS,        // vec4 x padded(G*(K+1))*N, read-write (offsets from the strand's anchor)
-  kBindingPrevPositions = TVK_BINDING_PREV_POSITIONS,    // vec4 x padded(G)*N, read-write
-  kBindingPrevPrevPositions = TVK_BINDING_PREV_PREV_POSITIONS,// vec4 x padded(G)*N, read-write
-  kBindingTangents = TVK_BINDING_TANGENTS,         // vec4 x padded(G*(K+1))*N, written
-  kBindingRestPositions = TVK_BINDING_REST_POSITIONS,    // vec4 x padded(G)*N, static (v = 0: the root; v > 0: offset from the root)
-  kBindingRestInfo = TVK_BINDING_REST_INFO,         // vec4 x padded(G)*N, static
-  kBindingRestEdgeLocal = TVK_BINDING_REST_EDGE_LOCAL,    // vec4 x padded(G)*N, static
-  kBindingRootFrames = TVK_BINDING_ROOT_FRAMES,       // vec4 x G, static
-  kBindingFollowOffsets = TVK_BINDING_FOLLOW_OFFSETS,    // vec4 x G*K, static (a 16-byte dummy when K = 0)
-  kBindingGuideInfo = TVK_BINDING_GUIDE_INFO,        // uvec4 x G, static
-  kBindingBoneIndices = TVK_BINDING_BONE_INDICES,     // uvec4 x G, static (a 16-byte dummy without bones)
-  kBindingBoneWeights = TVK_BINDING_BONE_WEIGHTS,     // vec4 x G, static (a 16-byte dummy without bones)
-  kBindingSkin = TVK_BINDING_SKIN,            // vec4 x kSkinVec4PerBone per (substep, bone), per frame
-  kBindingGroups = TVK_BINDING_GROUPS,          // GroupParams x groups, per frame
-  kBindingSteps = TVK_BINDING_STEPS,           // StepParams x substeps, per frame
-  kBindingCounters = TVK_BINDING_COUNTERS,        // uint per instance, read-write
-  kBindingAnchors = TVK_BINDING_ANCHORS,         // vec4 x G, written by integrate: each guide's anchor (its skinned rest root)
+  kBindingPositions = 0,        // vec4 x padded(G*(K+1))*N, read-write (offsets from the strand's anchor)
+  kBindingPrevPositions = 1,    // vec4 x padded(G)*N, read-write
+  kBindingPrevPrevPositions = 2,// vec4 x padded(G)*N, read-write
+  kBindingTangents = 3,         // vec4 x padded(G*(K+1))*N, written
+  kBindingRestPositions = 4,    // vec4 x padded(G)*N, static (v = 0: the root; v > 0: offset from the root)
+  kBindingRestInfo = 5,         // vec4 x padded(G)*N, static
+  kBindingRestEdgeLocal = 6,    // vec4 x padded(G)*N, static
+  kBindingRootFrames = 7,       // vec4 x G, static
+  kBindingFollowOffsets = 8,    // vec4 x G*K, static (a 16-byte dummy when K = 0)
+  kBindingGuideInfo = 9,        // uvec4 x G, static
+  kBindingBoneIndices = 10,     // uvec4 x G, static (a 16-byte dummy without bones)
+  kBindingBoneWeights = 11,     // vec4 x G, static (a 16-byte dummy without bones)
+  kBindingSkin = 12,            // vec4 x kSkinVec4PerBone per (substep, bone), per frame
+  kBindingGroups = 13,          // GroupParams x groups, per frame
+  kBindingSteps = 14,           // StepParams x substeps, per frame
+  kBindingCounters = 15,        // uint per instance, read-write
+  kBindingAnchors = 16,         // vec4 x G, written by integrate: each guide's anchor (its skinned rest root)
 };
-inline constexpr uint32_t kBindingCount = TVK_BINDING_COUNT;
+inline constexpr uint32_t kBindingCount = 17;
 
 // ---- specialization constants ----
 enum SpecConstant : uint32_t {
-  kSpecWorkgroupSize = TVK_SPEC_WORKGROUP_SIZE,
-  kSpecVerticesPerStrand = TVK_SPEC_VERTICES_PER_STRAND,  // N
-  kSpecFollowPerGuide = TVK_SPEC_FOLLOW_PER_GUIDE,     // K
-  kSpecFeatures = TVK_SPEC_FEATURES,           // Feature bits
-  kSpecCapsuleCount = TVK_SPEC_CAPSULE_COUNT,
+  kSpecWorkgroupSize = 0,
+  kSpecVerticesPerStrand = 1,  // N
+  kSpecFollowPerGuide = 2,     // K
+  kSpecFeatures = 3,           // Feature bits
+  kSpecCapsuleCount = 4,
 };
 
 enum Feature : uint32_t {
-  kFeatureGlobalShape = TVK_FEATURE_GLOBAL_SHAPE,
-  kFeatureWind = TVK_FEATURE_WIND,
-  kFeatureCollision = TVK_FEATURE_COLLISION,
-  kFeatureSkinning = TVK_FEATURE_SKINNING,
-  kFeatureMaxSpeed = TVK_FEATURE_MAX_SPEED,
-  kFeaturePinnedTips = TVK_FEATURE_PINNED_TIPS,  // length: some strand is pinned at its tip too (the tridiagonal length solve)
+  kFeatureGlobalShape = 1u,
+  kFeatureWind = 2u,
+  kFeatureCollision = 4u,
+  kFeatureSkinning = 8u,
+  kFeatureMaxSpeed = 16u,
+  kFeaturePinnedTips = 32u,  // length: some strand is pinned at its tip too (the tridiagonal length solve)
 };
 
 // Vertex layout of every per-vertex buffer (positions, tangents, the histories, the static rest data): strands in
@@ -65,14 +65,13 @@ constexpr uint64_t padded_strands(uint64_t strands) {
   return (strands + kStrandBlock - 1) / kStrandBlock * kStrandBlock;
 }
 constexpr uint64_t vertex_index(uint64_t strand, uint64_t v, uint64_t n) {
-  return TVK_VERTEX_INDEX(strand, v, n);
+  return strand / kStrandBlock * (uint64_t{kStrandBlock} * n) + v * kStrandBlock + strand % kStrandBlock;
 }
 
-inline constexpr uint32_t kStepReset = TVK_STEP_RESET;       // StepParams::flags[0] bits
-inline constexpr uint32_t kStepMoveState = TVK_STEP_MOVE_STATE;
-inline constexpr uint32_t kMaxCapsules = TVK_STEP_MAX_CAPSULES;
-static_assert(kMaxCapsules == TVK_MAX_CAPSULES);
-inline constexpr uint32_t kSkinVec4PerBone = TVK_SKIN_VEC4;  // 3 affine rows, rotation, rotation since the last step, the
+inline constexpr uint32_t kStepReset = 1u;       // StepParams::flags[0] bits
+inline constexpr uint32_t kStepMoveState = 2u;
+inline constexpr uint32_t kMaxCapsules = 8;
+inline constexpr uint32_t kSkinVec4PerBone = 9;  // 3 affine rows, rotation, rotation since the last step, the
                                                   // previous step's rotation since the one before, 3 rows of the
                                                   // map's change since the last step (the anchors' move)
 
@@ -126,5 +125,26 @@ static_assert(sizeof(PushConstants) <= 128);
 using Vec4 = std::array<float, 4>;
 using UVec4 = std::array<uint32_t, 4>;
 static_assert(sizeof(Vec4) == 16 && sizeof(UVec4) == 16);
+
+// One layout: the enums and constants above are gpu_layout.h's numbers, and the public limits are the same.
+static_assert(kBindingPositions == TVK_BINDING_POSITIONS && kBindingPrevPositions == TVK_BINDING_PREV_POSITIONS &&
+              kBindingPrevPrevPositions == TVK_BINDING_PREV_PREV_POSITIONS && kBindingTangents == TVK_BINDING_TANGENTS &&
+              kBindingRestPositions == TVK_BINDING_REST_POSITIONS && kBindingRestInfo == TVK_BINDING_REST_INFO &&
+              kBindingRestEdgeLocal == TVK_BINDING_REST_EDGE_LOCAL && kBindingRootFrames == TVK_BINDING_ROOT_FRAMES &&
+              kBindingFollowOffsets == TVK_BINDING_FOLLOW_OFFSETS && kBindingGuideInfo == TVK_BINDING_GUIDE_INFO &&
+              kBindingBoneIndices == TVK_BINDING_BONE_INDICES && kBindingBoneWeights == TVK_BINDING_BONE_WEIGHTS &&
+              kBindingSkin == TVK_BINDING_SKIN && kBindingGroups == TVK_BINDING_GROUPS &&
+              kBindingSteps == TVK_BINDING_STEPS && kBindingCounters == TVK_BINDING_COUNTERS &&
+              kBindingAnchors == TVK_BINDING_ANCHORS && kBindingCount == TVK_BINDING_COUNT);
+static_assert(kSpecWorkgroupSize == TVK_SPEC_WORKGROUP_SIZE && kSpecVerticesPerStrand == TVK_SPEC_VERTICES_PER_STRAND &&
+              kSpecFollowPerGuide == TVK_SPEC_FOLLOW_PER_GUIDE && kSpecFeatures == TVK_SPEC_FEATURES &&
+              kSpecCapsuleCount == TVK_SPEC_CAPSULE_COUNT);
+static_assert(kFeatureGlobalShape == TVK_FEATURE_GLOBAL_SHAPE && kFeatureWind == TVK_FEATURE_WIND &&
+              kFeatureCollision == TVK_FEATURE_COLLISION && kFeatureSkinning == TVK_FEATURE_SKINNING &&
+              kFeatureMaxSpeed == TVK_FEATURE_MAX_SPEED && kFeaturePinnedTips == TVK_FEATURE_PINNED_TIPS);
+static_assert(vertex_index(37, 5, 9) == TVK_VERTEX_INDEX(37u, 5u, 9u));
+static_assert(kStepReset == TVK_STEP_RESET && kStepMoveState == TVK_STEP_MOVE_STATE &&
+              kSkinVec4PerBone == TVK_SKIN_VEC4 && kMaxCapsules == TVK_STEP_MAX_CAPSULES &&
+              kMaxCapsules == TVK_MAX_CAPSULES);
 
 }  // namespace tressvk::sim
