@@ -34,6 +34,8 @@ layout(constant_id = 4) const uint CAPSULE_COUNT = 0;     // 0..8, capsules test
 #define TVK_FEATURE_SKINNING 8u      // bone weights blended (otherwise one rigid transform: bone 0)
 #define TVK_FEATURE_MAX_SPEED 16u    // length: velocity clamp
 #define TVK_FEATURE_PINNED_TIPS 32u  // length: strands pinned at both ends (the tridiagonal length solve)
+#define TVK_FEATURE_VSP 64u          // fused frame kernel only: run velocity shock propagation
+#define TVK_FEATURE_LOCAL_SHAPE 128u // fused frame kernel only: run local shape constraints
 
 #define TVK_HAS(bit) ((FEATURES & (bit)) != 0u)
 
@@ -116,12 +118,14 @@ layout(std430, set = 0, binding = 15) buffer Counters { uint counters[]; };
 // Per guide: xyz its anchor in simulation space (the skinned rest root at the current step), w = 0.
 layout(std430, set = 0, binding = 16) buffer Anchors { vec4 anchor[]; };
 
-layout(push_constant) uniform PushConstants {   // 20 bytes
+layout(push_constant) uniform PushConstants {   // 28 bytes
   uint guide_count;     // G: dispatches cover exactly G guides' work, every thread bounds-checks
   uint step_index;      // index into step_params
   uint skin_base;       // first vec4 of this substep's skinning data in skin[]
   uint group_base;      // index of this instance's group 0 in group[]
   uint counter_index;   // this instance's slot in counters[]
+  uint step_count;      // fused frame kernel: substeps to run (step_index .. step_index + step_count - 1)
+  uint skin_stride;     // fused frame kernel: vec4 of skinning data per substep
 } pc;
 
 #endif

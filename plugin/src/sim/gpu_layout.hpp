@@ -51,6 +51,8 @@ enum Feature : uint32_t {
   kFeatureSkinning = 8u,
   kFeatureMaxSpeed = 16u,
   kFeaturePinnedTips = 32u,  // length: some strand is pinned at its tip too (the tridiagonal length solve)
+  kFeatureVsp = 64u,         // fused frame kernel only (sim/fused.hpp): run VSP
+  kFeatureLocalShape = 128u, // fused frame kernel only: run local shape constraints
 };
 
 // Vertex layout of every per-vertex buffer (positions, tangents, the histories, the static rest data): strands in
@@ -114,8 +116,10 @@ struct PushConstants {
   uint32_t skin_base;      // index of a vec4 in the Skin buffer
   uint32_t group_base;
   uint32_t counter_index;
+  uint32_t step_count = 0;   // fused frame kernel: substeps to run
+  uint32_t skin_stride = 0;  // fused frame kernel: vec4 of skinning data per substep
 };
-static_assert(sizeof(PushConstants) == 20);
+static_assert(sizeof(PushConstants) == 28);
 static_assert(sizeof(PushConstants) <= 128);
 
 using Vec4 = std::array<float, 4>;
