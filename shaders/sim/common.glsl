@@ -6,6 +6,19 @@
 
 #include "sim/layout.glsl"
 
+// State access. The pass-per-dispatch shaders read and write the state buffers; the fused frame kernel
+// (frame.glsl) defines these first and maps them onto its on-chip copy of the strand, so that both paths run the
+// same pass functions (integrate.glsl, vsp.glsl, local_shape.glsl, length.glsl, follow.glsl). i is always the
+// element index of the blocked layout (vertex_index), g the guide.
+#ifndef TVK_POS
+#define TVK_POS(i) pos[i]
+#define TVK_PREV(i) prev[i]
+#define TVK_PREVPREV(i) prevprev[i]
+#define TVK_ANCHOR(g) anchor[g]
+#define TVK_STEP pc.step_index      // index into step_params of the substep being run
+#define TVK_SKIN_BASE pc.skin_base  // first vec4 of that substep's skinning data
+#endif
+
 // Relative thresholds (all lengths are compared with a rest length, never with a constant in metres).
 const float kDirectionEps = 1e-4;  // an edge shorter than this fraction of its rest length has no direction
 const float kCollapse = 1.0;      // an edge shorter than this fraction of its rest length gets a blended direction
@@ -76,14 +89,14 @@ vec3 skin_apply(uint g, uint slot, vec3 x, float w) {
     vec4 r0 = vec4(0), r1 = vec4(0), r2 = vec4(0);
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
-      uint o = pc.skin_base + TVK_SKIN_VEC4 * bi[i] + slot;
+      uint o = TVK_SKIN_BASE + TVK_SKIN_VEC4 * bi[i] + slot;
       r0 += bw[i] * skin[o];
       r1 += bw[i] * skin[o + 1u];
       r2 += bw[i] * skin[o + 2u];
     }
     return vec3(dot(r0.xyz, x) + w * r0.w, dot(r1.xyz, x) + w * r1.w, dot(r2.xyz, x) + w * r2.w);
   }
-  uint o = pc.skin_base + slot;
+  uint o = TVK_SKIN_BASE + slot;
   return vec3(dot(skin[o].xyz, x) + w * skin[o].w, dot(skin[o + 1u].xyz, x) + w * skin[o + 1u].w,
               dot(skin[o + 2u].xyz, x) + w * skin[o + 2u].w);
 }
@@ -104,16 +117,16 @@ vec4 skin_rotation(uint g) {
   if (TVK_HAS(TVK_FEATURE_SKINNING)) {
     uvec4 bi = bone_index[g];
     vec4 bw = bone_weight[g];
-    vec4 q0 = skin[pc.skin_base + TVK_SKIN_VEC4 * bi[0] + 3u];
+    vec4 q0 = skin[TVK_SKIN_BASE + TVK_SKIN_VEC4 * bi[0] + 3u];
     vec4 q = vec4(0);
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
-      vec4 qi = skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + 3u];
+      vec4 qi = skin[TVK_SKIN_BASE + TVK_SKIN_VEC4 * bi[i] + 3u];
       q += (dot(qi, q0) < 0.0 ? -bw[i] : bw[i]) * qi;
     }
     return normalize(q);
   }
-  return skin[pc.skin_base + 3u];
+  return skin[TVK_SKIN_BASE + 3u];
 }
 
 // Blends a per-bone rotation held at vec4 `slot` of each bone's skinning data with the strand's bone weights. The
@@ -125,11 +138,11 @@ vec4 blend_bone_delta(uint g, uint slot) {
     vec4 q = vec4(0);
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
-      q += bw[i] * skin[pc.skin_base + TVK_SKIN_VEC4 * bi[i] + slot];
+      q += bw[i] * skin[TVK_SKIN_BASE + TVK_SKIN_VEC4 * bi[i] + slot];
     }
     return normalize(q);
   }
-  return skin[pc.skin_base + slot];
+  return skin[TVK_SKIN_BASE + slot];
 }
 
 // The strand's skinning rotation since the previous step.
@@ -144,7 +157,7 @@ vec4 current_root_frame(uint g) {
   vec4 f = quat_mul(skin_rotation(g), root_frame[g]);
   uint b = strand_base(g);
   if (rest_info[b + TVK_BLOCK].z != 0.0) {
-    f = frame_align(f, pos[b + TVK_BLOCK].xyz - pos[b].xyz, rest_info[b].x);
+    f = frame_align(f, TVK_POS(b + TVK_BLOCK).xyz - TVK_POS(b).xyz, rest_info[b].x);
   }
   return f;
 }

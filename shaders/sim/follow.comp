@@ -2,7 +2,7 @@
 // guide's current root frame, spread toward the tip by the tip separation; it takes the guide's tangent.
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "sim/common.glsl"
+#include "sim/follow.glsl"
 layout(local_size_x_id = 0) in;
 
 void main() {
@@ -15,10 +15,8 @@ void main() {
   uint f = strand / G;
   uint g = strand - f * G;
   GroupParams gp = guide_params(g);
-  vec3 offset = quat_rotate(current_root_frame(g), follow_offset[g * K + f].xyz);
-  float spread = 1.0 + gp.tip_separation * float(v) / float(N - 1u);
   uint src = vertex_index(g, v);
   uint dst = vertex_index(G + strand, v);
-  pos[dst] = vec4(pos[src].xyz + spread * offset, pos[src].w);
+  pos[dst] = follow_vertex(pos[src], follow_root_offset(g, f), gp.tip_separation, v);
   tangent[dst] = tangent[src];
 }

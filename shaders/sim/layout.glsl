@@ -116,12 +116,14 @@ layout(std430, set = 0, binding = 15) buffer Counters { uint counters[]; };
 // Per guide: xyz its anchor in simulation space (the skinned rest root at the current step), w = 0.
 layout(std430, set = 0, binding = 16) buffer Anchors { vec4 anchor[]; };
 
-layout(push_constant) uniform PushConstants {   // 20 bytes
+layout(push_constant) uniform PushConstants {   // 28 bytes
   uint guide_count;     // G: dispatches cover exactly G guides' work, every thread bounds-checks
   uint step_index;      // index into step_params
   uint skin_base;       // first vec4 of this substep's skinning data in skin[]
   uint group_base;      // index of this instance's group 0 in group[]
   uint counter_index;   // this instance's slot in counters[]
+  uint step_count;      // fused frame kernel: substeps to run (step_index .. step_index + step_count - 1)
+  uint skin_stride;     // fused frame kernel: vec4 of skinning data per substep
 } pc;
 
 #endif

@@ -5,6 +5,7 @@
 //   tressvk-bench compare --asset mohawk.tvkhair --scene run
 #include "bench.hpp"
 #include "params.hpp"
+#include "perf_bench.hpp"
 #include "render_bench.hpp"
 #include "run_bench.hpp"
 #include "soak_bench.hpp"
@@ -135,7 +136,10 @@ int main(int argc, char** argv) {
   bench::RunCommand run_command;
   bench::add_run_command(app, run_command);
   CLI::App* soak = bench::add_soak_subcommand(app);
+  bench::PerfCommand perf_command;
+  bench::add_perf_command(app, perf_command);
   CLI11_PARSE(app, argc, argv);
+  if (perf_command.app->parsed()) return bench::execute_perf_command(perf_command);
   if (render->parsed()) return bench::run_render_bench(render_options);
   if (run_command.app->parsed()) return bench::execute_run_command(run_command);
   if (soak->parsed()) {

@@ -18,7 +18,7 @@
 
 namespace tressvk::sim {
 
-enum class PassId : uint32_t { kIntegrate, kVsp, kLocalShape, kLength, kFollow };
+enum class PassId : uint32_t { kIntegrate, kVsp, kLocalShape, kLength, kFollow, kFrame /* fused.hpp */ };
 
 enum class Granularity : uint32_t {
   kGuideVertex,   // one thread per guide vertex: padded(G)*N threads, thread i = element i of the blocked layout

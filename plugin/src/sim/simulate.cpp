@@ -1,6 +1,7 @@
 // Recording the simulation: pipelines per pass variant, the per-frame parameter ring, and the barriers between
 // passes, derived from the pass table's read/write sets (see hazards.hpp).
 #include "core/objects.hpp"
+#include "sim/fused.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -181,7 +182,16 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   work.dynamic_offsets = {static_cast<uint32_t>(base), static_cast<uint32_t>(base), static_cast<uint32_t>(base)};
   const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide,
                                                  inst.asset->rest.pinned_tip_strands > 0);
-  work.passes = sim::passes_for(terms);
+  const sim::SimPath path = sim::sim_path_from_environment();
+  if (path == sim::SimPath::kPasses) {
+    work.passes = sim::passes_for(terms);
+  } else {
+    // The fused frame kernel (sim/fused.hpp); the shared-memory variant only where the strand block fits.
+    const bool shared = path == sim::SimPath::kFusedShared &&
+                        sim::frame_shared_bytes(inst.asset->rest.vertices_per_strand, terms.vsp) <=
+                            ctx.device_properties.limits.maxComputeSharedMemorySize;
+    work.passes = {sim::frame_pass_use(terms, shared)};
+  }
   return TVK_SUCCESS;
 }
 
@@ -320,11 +330,14 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
       bound = pipeline;
       ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx.sim_pipeline_layout, 0, 1, &inst.set, 3,
                                      w->dynamic_offsets.data());
-      const uint32_t s = per_frame ? w->steps - 1 : step;
-      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, 0};
+      const bool fused = u->info->id == PassId::kFrame;  // all substeps from step 0 in one dispatch
+      const uint32_t s = fused ? 0 : per_frame ? w->steps - 1 : step;
+      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, 0, w->steps, w->skin_stride};
       ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-      const uint32_t groups = sim::dispatch_groups(u->info->granularity, rest.guide_count, rest.vertices_per_strand,
-                                                   rest.follow_per_guide, ctx.workgroup_size);
+      const uint32_t groups = fused ? sim::frame_dispatch_groups(rest.guide_count)
+                                    : sim::dispatch_groups(u->info->granularity, rest.guide_count,
+                                                           rest.vertices_per_strand, rest.follow_per_guide,
+                                                           ctx.workgroup_size);
       if (groups) ctx.vk.vkCmdDispatch(cmd, groups, 1, 1);
       inst.hazards.pass_recorded(u->info->reads, u->info->writes);
       note_pass(u->name);
@@ -347,6 +360,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
   for (const sim::PassInfo& p : sim::pass_table())
     if (p.frequency == sim::Frequency::kPerFrame)
       if (TvkResult r = record_slot(p.id, 0, true); r != TVK_SUCCESS) return r;
+  if (TvkResult r = record_slot(PassId::kFrame, 0, true); r != TVK_SUCCESS) return r;
 
   // Exit: positions, tangents and anchors visible to the host's vertex shaders (and compute); counters to the host.
   barriers.clear();

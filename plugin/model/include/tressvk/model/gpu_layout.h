@@ -46,6 +46,8 @@
 #define TVK_FEATURE_SKINNING 8u      // bone weights blended (otherwise one rigid transform: bone 0)
 #define TVK_FEATURE_MAX_SPEED 16u    // length: velocity clamp
 #define TVK_FEATURE_PINNED_TIPS 32u  // length: strands pinned at both ends (the tridiagonal length solve)
+#define TVK_FEATURE_VSP 64u          // fused frame kernel only: run velocity shock propagation
+#define TVK_FEATURE_LOCAL_SHAPE 128u // fused frame kernel only: run local shape constraints
 
 // ---- simulation: per-frame data ----------------------------------------------------------------------------
 #define TVK_SKIN_VEC4 9u        // vec4 per (substep, bone) in the Skin buffer

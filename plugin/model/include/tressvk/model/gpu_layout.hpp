@@ -55,6 +55,8 @@ enum Feature : uint32_t {
   kFeatureSkinning = 8u,
   kFeatureMaxSpeed = 16u,
   kFeaturePinnedTips = 32u,  // length: some strand is pinned at its tip too (the tridiagonal length solve)
+  kFeatureVsp = 64u,         // fused frame kernel only (sim/fused.hpp): run VSP
+  kFeatureLocalShape = 128u, // fused frame kernel only: run local shape constraints
 };
 
 // Vertex layout of every per-vertex buffer (positions, tangents, the histories, the static rest data): strands in
@@ -118,8 +120,10 @@ struct PushConstants {
   uint32_t skin_base;      // index of a vec4 in the Skin buffer
   uint32_t group_base;
   uint32_t counter_index;
+  uint32_t step_count = 0;   // fused frame kernel: substeps to run
+  uint32_t skin_stride = 0;  // fused frame kernel: vec4 of skinning data per substep
 };
-static_assert(sizeof(PushConstants) == 20);
+static_assert(sizeof(PushConstants) == 28);
 static_assert(sizeof(PushConstants) <= 128);
 
 using Vec4 = std::array<float, 4>;
@@ -141,7 +145,8 @@ static_assert(kSpecWorkgroupSize == TVK_SPEC_WORKGROUP_SIZE && kSpecVerticesPerS
               kSpecCapsuleCount == TVK_SPEC_CAPSULE_COUNT);
 static_assert(kFeatureGlobalShape == TVK_FEATURE_GLOBAL_SHAPE && kFeatureWind == TVK_FEATURE_WIND &&
               kFeatureCollision == TVK_FEATURE_COLLISION && kFeatureSkinning == TVK_FEATURE_SKINNING &&
-              kFeatureMaxSpeed == TVK_FEATURE_MAX_SPEED && kFeaturePinnedTips == TVK_FEATURE_PINNED_TIPS);
+              kFeatureMaxSpeed == TVK_FEATURE_MAX_SPEED && kFeaturePinnedTips == TVK_FEATURE_PINNED_TIPS &&
+              kFeatureVsp == TVK_FEATURE_VSP && kFeatureLocalShape == TVK_FEATURE_LOCAL_SHAPE);
 static_assert(vertex_index(37, 5, 9) == TVK_VERTEX_INDEX(37u, 5u, 9u));
 static_assert(kStepReset == TVK_STEP_RESET && kStepMoveState == TVK_STEP_MOVE_STATE &&
               kSkinVec4PerBone == TVK_SKIN_VEC4 && kMaxCapsules == TVK_STEP_MAX_CAPSULES &&

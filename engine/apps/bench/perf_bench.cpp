@@ -1,0 +1,340 @@
+#include "perf_bench.hpp"
+
+#include "params.hpp"
+
+#include <tressvk/asset_io.hpp>
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/engine/buffer.hpp>
+#include <tressvk/engine/device.hpp>
+#include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/host/hair_readback.hpp>
+#include <tressvk/host/glue.hpp>
+#include <tressvk/engine/timestamps.hpp>
+#include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/scenes.hpp>
+#include <tressvk/reference/simulator.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace tressvk::bench {
+namespace {
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
+}
+
+// The bytes a frame must move at the least: the state (positions and the previous positions) read once and written
+// once, prevprev written when VSP runs, tangents written once, the static rest data each pass reads (rest positions
+// and rest info; the local frame's rest edges with local shape) read once, and each follow hair's positions and
+// tangents written once. What the frame kernel re-reads from caches within the frame is not counted.
+uint64_t frame_bytes(uint64_t guide_vertices, uint64_t follow_vertices, bool vsp, bool local_shape) {
+  const uint64_t per_guide_vertex = 16 * (2 + 2 + (vsp ? 1 : 0) + 1 + 2 + (local_shape ? 1 : 0));
+  return guide_vertices * per_guide_vertex + follow_vertices * 32;
+}
+
+struct CopyTiming {
+  double ms = 0;
+  double gb_per_s = 0;
+};
+
+// A plain device-local buffer copy moving `bytes` (bytes / 2 read, bytes / 2 written), timed with GPU timestamps:
+// the median of `repeats` copies recorded back to back in one command buffer.
+CopyTiming time_copy(const engine::Device& dev, uint64_t bytes, uint32_t repeats) {
+  const VkDeviceSize half = std::max<VkDeviceSize>(256, (bytes / 2 + 255) / 256 * 256);
+  engine::Buffer src = engine::create_buffer(dev, half, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                             engine::MemoryUsage::device_local);
+  engine::Buffer dst = engine::create_buffer(dev, half, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                             engine::MemoryUsage::device_local);
+  engine::TimestampQueries ts(dev, 2 * repeats);
+  if (!ts.supported()) return {};
+  dev.run_commands([&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, src.handle(), 0, VK_WHOLE_SIZE, 0x3f800000u);
+    ts.cmd_reset(cmd);
+    VkMemoryBarrier2 mb{};
+    mb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    VkDependencyInfo dep{};
+    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    for (uint32_t i = 0; i < repeats; ++i) {
+      vkCmdPipelineBarrier2(cmd, &dep);  // each copy waits for the one before (write-after-write on dst)
+      ts.cmd_write(cmd, 2 * i, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
+      const VkBufferCopy region{0, 0, half};
+      vkCmdCopyBuffer(cmd, src.handle(), dst.handle(), 1, &region);
+      ts.cmd_write(cmd, 2 * i + 1, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
+    }
+  });
+  std::vector<double> ms;
+  for (uint32_t i = repeats / 5; i < repeats; ++i)  // the first fifth warms the clocks and caches up
+    if (auto t = ts.elapsed_ms(2 * i, 2 * i + 1)) ms.push_back(*t);
+  CopyTiming out;
+  out.ms = percentile(ms, 0.5);
+  out.gb_per_s = out.ms > 0 ? double(2 * half) / (out.ms * 1e-3) * 1e-9 : 0;
+  return out;
+}
+
+}  // namespace
+
+void add_perf_command(CLI::App& app, PerfCommand& cmd) {
+  CLI::App* perf = app.add_subcommand(
+      "perf", "GPU time per frame with frames in flight, against a plain copy of the frame's bytes, and the step error");
+  cmd.app = perf;
+  auto* source = perf->add_option_group("groom");
+  source->add_option("--asset", cmd.asset_path, "a baked .tvkhair file");
+  source->add_option("--builtin", cmd.builtin, "a procedural groom: straight, curly or long128");
+  source->require_option(1);
+  perf->add_option("--scene", cmd.scene, "settle, shake, run, teleport, wind, hitch or far")->capture_default_str();
+  perf->add_option("--frames", cmd.frames, "timed frames")->capture_default_str()->check(CLI::PositiveNumber);
+  perf->add_option("--warmup", cmd.warmup, "frames run before timing")->capture_default_str();
+  perf->add_option("--in-flight", cmd.frames_in_flight, "frames in flight")->capture_default_str()->check(CLI::Range(1, 8));
+  perf->add_option("--error-frames", cmd.error_frames, "frames after the timed ones whose step error is measured")
+      ->capture_default_str();
+  perf->add_option("--guides", cmd.guides, "guides of a built-in groom")->capture_default_str();
+  perf->add_option("--follows", cmd.follows, "follow hairs per guide of a built-in groom")->capture_default_str();
+  perf->add_option("--vertices", cmd.vertices, "vertices per strand of a built-in groom (0 = its default)");
+  perf->add_option("--step-rate", cmd.settings.time.step_rate, "simulation steps per second")->capture_default_str();
+  perf->add_option("--local-iterations", cmd.params.local_iterations)->capture_default_str();
+  perf->add_option("--length-iterations", cmd.params.length_iterations)->capture_default_str();
+  perf->add_option("--params", cmd.params_path, "JSON parameter file (as compare --params)")->check(CLI::ExistingFile);
+  perf->add_option("--json", cmd.json_path, "write the results as JSON");
+  perf->add_option("--device", cmd.device, "device index or name substring (default: discrete GPU first)");
+  perf->add_flag("--table-row", cmd.table_row, "print one Markdown table row instead of the report");
+  perf->add_flag("--validation", cmd.validation, "enable the Vulkan validation layer; any message fails the run");
+}
+
+int execute_perf_command(const PerfCommand& given) {
+  PerfCommand cmd = given;
+  const auto names = reference::scene_names();
+  if (std::find(names.begin(), names.end(), cmd.scene) == names.end()) {
+    std::fprintf(stderr, "tressvk-bench perf: --scene: unknown scene '%s'\n", cmd.scene.c_str());
+    return 1;
+  }
+  if (!cmd.params_path.empty()) {
+    try {
+      const demo::Params file = demo::load_params(cmd.params_path);
+      cmd.params = file.simulation;
+      cmd.settings = file.settings;
+      if (cmd.app->count("--step-rate")) cmd.settings.time.step_rate = given.settings.time.step_rate;
+      if (cmd.app->count("--local-iterations")) cmd.params.local_iterations = given.params.local_iterations;
+      if (cmd.app->count("--length-iterations")) cmd.params.length_iterations = given.params.length_iterations;
+    } catch (const demo::ParamsError& e) {
+      std::fprintf(stderr, "tressvk-bench perf: %s\n", e.what());
+      return 1;
+    }
+  }
+  asset::HairAsset groom;
+  std::string groom_name;
+  if (!cmd.asset_path.empty()) {
+    asset::ReadResult read = asset::read_file(cmd.asset_path);
+    if (!read.ok()) {
+      std::fprintf(stderr, "tressvk-bench perf: --asset %s: %s\n", cmd.asset_path.c_str(), read.error.c_str());
+      return 1;
+    }
+    groom = std::move(read.asset);
+    groom_name = std::filesystem::path(cmd.asset_path).filename().string();
+  } else {
+    try {
+      baker::BuiltinGroomOptions o;
+      o.guide_count = cmd.guides;
+      o.follow_per_guide = cmd.follows;
+      o.vertices_per_strand = cmd.vertices;
+      groom = baker::make_builtin_groom(cmd.builtin, o);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "tressvk-bench perf: --builtin %s: %s\n", cmd.builtin.c_str(), e.what());
+      return 1;
+    }
+    groom_name = cmd.builtin;
+  }
+
+  nlohmann::json out;
+  try {
+    engine::Device dev(host::tool_device_options("tressvk-bench", cmd.device, cmd.validation, cmd.validation));
+    // The plugin's parameter ring turns with the frame loop's slots; timestamps only for the dispatch count of a frame.
+    TvkContext ctx = host::create_context(dev, cmd.frames_in_flight, /*timestamps=*/true);
+    const std::vector<std::byte> bytes = asset::write(groom);
+    TvkAsset asset = host::load_asset(dev, ctx, bytes);
+    TvkInstanceCreateInfo ic{};
+    ic.struct_size = sizeof(ic);
+    ic.asset = asset;
+    ic.settings = &cmd.settings;
+    ic.params = &cmd.params;
+    TvkInstance inst = nullptr;
+    host::check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+
+    const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), cmd.params);
+    reference::Simulator ref(groom, params, cmd.settings);  // planner in step; loaded from the GPU for the error
+    const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
+    const double median_length = ref.median_strand_length();
+
+    std::vector<double> frame_ms, sim_ms;
+    uint32_t dispatches = 0;
+    uint64_t steps_total = 0, frames_total = 0;
+    const uint32_t total = cmd.warmup + cmd.frames;
+    engine::FrameLoop loop(dev, cmd.frames_in_flight, 2, [&](const engine::FrameLoop::Frame& fr) {
+      if (fr.number < cmd.warmup || fr.number >= total) return;
+      if (auto ms = fr.timestamps->elapsed_ms(0, 1)) frame_ms.push_back(*ms);
+    });
+    const auto record = [&](uint32_t f) {
+      const TvkSimFrame frame = reference::scene_frame(cmd.scene, f, geometry);
+      steps_total += ref.planner().plan(frame).steps.size();
+      ++frames_total;
+      host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+      host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      const engine::FrameLoop::Frame& fr = loop.begin();
+      // The frame that last used this slot is complete now: its per-pass timings name the dispatches of a frame.
+      TvkPassTiming timings[32];
+      const uint32_t n = tressvk_get_pass_timings(ctx, timings, 32);
+      if (n) {
+        uint32_t d = 0, m = 0;
+        double ms = 0;
+        for (uint32_t i = 0; i < n && i < 32; ++i) {
+          d += timings[i].dispatches;
+          ms += timings[i].milliseconds;
+          ++m;
+        }
+        dispatches = std::max(dispatches, d);
+        if (f > cmd.warmup + cmd.frames_in_flight && f <= total) sim_ms.push_back(ms);
+      }
+      fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      TvkSimulateInfo si{};
+      si.struct_size = sizeof(si);
+      si.instance_count = 1;
+      si.instances = &inst;
+      host::check_tvk(tressvk_cmd_simulate(ctx, fr.cmd, &si), ctx, "tressvk_cmd_simulate");
+      fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      loop.end();
+    };
+    std::chrono::steady_clock::time_point t0;
+    for (uint32_t f = 0; f < total; ++f) {
+      if (f == cmd.warmup) t0 = std::chrono::steady_clock::now();
+      record(f);
+    }
+    loop.finish();
+    const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double steps_per_frame = double(steps_total) / double(frames_total);
+
+    // The copy right after the timed frames, while the GPU is still at its working clock (timed after the step-error
+    // frames, where the GPU idles while the CPU reference runs, it reads up to 2x slow).
+    bool vsp = false, local_shape = false;
+    for (const TvkSimParams& p : params) {
+      vsp |= p.vsp_coefficient > 0;
+      local_shape |= p.local_stiffness > 0 && p.local_iterations > 0;
+    }
+    const uint64_t guide_vertices = uint64_t{groom.guide_count()} * groom.vertices_per_strand;
+    const uint64_t follow_vertices = guide_vertices * groom.follow_per_guide;
+    const uint64_t frame_byte_count = frame_bytes(guide_vertices, follow_vertices, vsp, local_shape);
+    const CopyTiming copy = time_copy(dev, frame_byte_count, 50);
+
+    // Step error, outside the timed frames: load the reference with the GPU state, advance both one frame.
+    double step_error = 0;
+    uint32_t error_frames = 0;
+    for (uint32_t e = 0; e < cmd.error_frames; ++e) {
+      const uint32_t f = total + e;
+      const host::HairState before = host::read_hair_state(dev, inst);
+      ref.set_state(before.positions, before.previous, before.previous_previous);
+      const TvkSimFrame frame = reference::scene_frame(cmd.scene, f, geometry);
+      ref.advance(frame);
+      host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+      host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
+      const engine::FrameLoop::Frame& fr = loop.begin();
+      TvkSimulateInfo si{};
+      si.struct_size = sizeof(si);
+      si.instance_count = 1;
+      si.instances = &inst;
+      host::check_tvk(tressvk_cmd_simulate(ctx, fr.cmd, &si), ctx, "tressvk_cmd_simulate");
+      loop.end();
+      loop.finish();
+      const host::HairState after = host::read_hair_state(dev, inst);
+      const auto err = reference::position_error(std::span<const std::array<double, 3>>(after.positions),
+                                                 ref.positions(), median_length);
+      step_error = std::max(step_error, err.max_rel);
+      ++error_frames;
+    }
+
+    const uint32_t np = tressvk_get_recorded_passes(ctx, nullptr, 0);
+    std::vector<const char*> pass_names(np);
+    tressvk_get_recorded_passes(ctx, pass_names.data(), np);
+    const char* path_env = std::getenv("TRESSVK_SIM_PATH");
+
+    const double gpu_ms = percentile(frame_ms, 0.5);
+
+    out = {
+        {"device", dev.description()},
+        {"groom", groom_name},
+        {"scene", cmd.scene},
+        {"sim_path", path_env ? path_env : "fused"},
+        {"guides", groom.guide_count()},
+        {"vertices_per_strand", groom.vertices_per_strand},
+        {"follow_per_guide", groom.follow_per_guide},
+        {"guide_vertices", guide_vertices},
+        {"step_rate_hz", cmd.settings.time.step_rate},
+        {"steps_per_frame", steps_per_frame},
+        {"frames", cmd.frames},
+        {"warmup", cmd.warmup},
+        {"frames_in_flight", cmd.frames_in_flight},
+        {"passes", std::vector<std::string>(pass_names.begin(), pass_names.end())},
+        {"dispatches_per_frame", dispatches},
+        {"gpu_ms_per_frame", gpu_ms},
+        {"gpu_ms_per_frame_p99", percentile(frame_ms, 0.99)},
+        {"gpu_ms_per_frame_min", percentile(frame_ms, 0.0)},
+        {"sim_pass_ms_per_frame", percentile(sim_ms, 0.5)},
+        {"wall_ms_per_frame", wall_ms / cmd.frames},
+        {"bytes_per_frame", frame_byte_count},
+        {"achieved_gb_per_s", gpu_ms > 0 ? double(frame_byte_count) / (gpu_ms * 1e-3) * 1e-9 : 0.0},
+        {"copy_ms", copy.ms},
+        {"copy_gb_per_s", copy.gb_per_s},
+        {"step_error_max_rel", step_error},
+        {"step_error_frames", error_frames},
+    };
+
+    dev.wait_idle();
+    tressvk_destroy_instance(inst);
+    tressvk_destroy_asset(asset);
+    tressvk_destroy_context(ctx);
+    if (cmd.validation && dev.messages().count() > 0) {
+      std::fprintf(stderr, "tressvk-bench perf: %llu validation messages\n",
+                   static_cast<unsigned long long>(dev.messages().count()));
+      return 4;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tressvk-bench perf: %s\n", e.what());
+    return 2;
+  }
+
+  if (cmd.table_row) {
+    // | groom | guide vertices | step rate | path | us/frame | p99 | GB/s (copy) | dispatches | step error |
+    std::printf("| %s | %llu | %.0f Hz | %s | %.1f | %.1f | %.0f (%.0f) | %u | %.2g |\n",
+                out["groom"].get<std::string>().c_str(), static_cast<unsigned long long>(out["guide_vertices"].get<uint64_t>()),
+                out["step_rate_hz"].get<double>(), out["sim_path"].get<std::string>().c_str(),
+                1e3 * out["gpu_ms_per_frame"].get<double>(), 1e3 * out["gpu_ms_per_frame_p99"].get<double>(),
+                out["achieved_gb_per_s"].get<double>(), out["copy_gb_per_s"].get<double>(),
+                out["dispatches_per_frame"].get<uint32_t>(), out["step_error_max_rel"].get<double>());
+  } else {
+    std::printf("%s\n", out.dump(2).c_str());
+  }
+  if (!cmd.json_path.empty()) {
+    std::ofstream f(cmd.json_path);
+    f << out.dump(2) << "\n";
+    if (!f) {
+      std::fprintf(stderr, "tressvk-bench perf: cannot write %s\n", cmd.json_path.c_str());
+      return 3;
+    }
+  }
+  return 0;
+}
+
+}  // namespace tressvk::bench

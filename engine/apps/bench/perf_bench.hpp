@@ -1,0 +1,32 @@
+// `tressvk-bench perf`: trustworthy GPU time per frame. The GPU is kept busy (several frames in flight, no readback
+// between timed frames), each frame is timed by its own GPU timestamps, a plain buffer copy of the frame's byte count
+// is timed in the same run (the memory speed the frame is measured against), and the step error against the
+// double-precision reference is measured after the timed frames, on frames that are not timed.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+
+#include <tressvk/tressvk.h>
+
+namespace tressvk::bench {
+
+struct PerfCommand {
+  CLI::App* app = nullptr;
+  std::string asset_path, builtin, scene = "shake", json_path, device, params_path;
+  uint32_t frames = 300, warmup = 60, frames_in_flight = 3, error_frames = 3;
+  uint32_t guides = 64, follows = 0, vertices = 0;
+  TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  bool validation = false;
+  bool table_row = false;
+};
+
+void add_perf_command(CLI::App& app, PerfCommand& cmd);
+// Exit code: 0; 1 bad input (the message names the option); 2 a failure while running; 3 the JSON cannot be
+// written; 4 validation messages (with --validation).
+int execute_perf_command(const PerfCommand& cmd);
+
+}  // namespace tressvk::bench

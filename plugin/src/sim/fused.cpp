@@ -1,0 +1,64 @@
+#include "sim/fused.hpp"
+
+#include <cstdlib>
+#include <cstring>
+
+#include "tressvk_sim_spirv.h"
+
+namespace tressvk::sim {
+namespace {
+
+constexpr uint32_t all_bindings() { return (1u << kBindingCount) - 1u; }
+
+// Reads and writes are the union of the five passes' (the hazard tracker needs no more precision for one dispatch).
+constexpr uint32_t kFrameWrites = binding_bit(kBindingPositions) | binding_bit(kBindingPrevPositions) |
+                                  binding_bit(kBindingPrevPrevPositions) | binding_bit(kBindingTangents) |
+                                  binding_bit(kBindingCounters) | binding_bit(kBindingAnchors);
+constexpr uint32_t kFrameFeatures = kFeatureGlobalShape | kFeatureWind | kFeatureCollision | kFeatureSkinning |
+                                    kFeatureMaxSpeed | kFeaturePinnedTips | kFeatureVsp | kFeatureLocalShape;
+
+const PassInfo kFramePrivate = {PassId::kFrame, "frame", k_spv_frame_comp, sizeof(k_spv_frame_comp),
+                                Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites,
+                                kFrameFeatures, true};
+const PassInfo kFrameShared = {PassId::kFrame, "frame", k_spv_frame_shared_comp, sizeof(k_spv_frame_shared_comp),
+                               Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites,
+                               kFrameFeatures, true};
+// Not a shader feature: keeps the two variants' pipelines apart in the context's pipeline cache (FEATURES ignores it).
+constexpr uint32_t kSharedVariantBit = 1u << 15;  // below bit 16: the cache key puts capsules at bit 48
+
+}  // namespace
+
+SimPath sim_path_from_environment() {
+  static const SimPath path = [] {
+    const char* v = std::getenv("TRESSVK_SIM_PATH");
+    if (v && std::strcmp(v, "passes") == 0) return SimPath::kPasses;
+    if (v && std::strcmp(v, "fused-shared") == 0) return SimPath::kFusedShared;
+    return SimPath::kFused;
+  }();
+  return path;
+}
+
+uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool vsp) {
+  return kStrandBlock * vertices_per_strand * 16u * (vsp ? 3u : 2u) + (vsp ? 0u : kStrandBlock * 16u);
+}
+
+PassUse frame_pass_use(const SceneTerms& terms, bool shared) {
+  PassUse use{shared ? &kFrameShared : &kFramePrivate, "frame", terms.features, terms.capsule_count};
+  if (terms.vsp) use.features |= kFeatureVsp;
+  if (terms.local_shape) use.features |= kFeatureLocalShape;
+  if (shared) use.features |= kSharedVariantBit;
+  if (shared) use.name += "(shared)";
+  if (use.features & kFeatureVsp) use.name += "+vsp";
+  if (use.features & kFeatureLocalShape) use.name += "+local_shape";
+  if (use.features & kFeatureGlobalShape) use.name += "+global";
+  if (use.features & kFeatureWind) use.name += "+wind";
+  if (use.features & kFeatureCollision) use.name += "+collision";
+  if (use.features & kFeatureMaxSpeed) use.name += "+clamp";
+  if (use.features & kFeaturePinnedTips) use.name += "+pinned-tips";
+  if (terms.follow) use.name += "+follow";
+  return use;
+}
+
+uint32_t frame_dispatch_groups(uint32_t guide_count) { return (guide_count + kStrandBlock - 1) / kStrandBlock; }
+
+}  // namespace tressvk::sim

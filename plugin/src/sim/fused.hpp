@@ -1,0 +1,32 @@
+// The fused frame kernel (shaders/sim/frame.glsl): one dispatch per instance per frame running every substep and
+// every pass the scene needs, the strand's state on chip. It is the default simulation path; the pass-per-dispatch
+// path (passes.hpp, one dispatch per pass per substep) stays behind TRESSVK_SIM_PATH=passes as a debugging aid that
+// times each pass on its own (docs/simulation.md).
+#pragma once
+
+#include <cstdint>
+
+#include "sim/passes.hpp"
+
+namespace tressvk::sim {
+
+enum class SimPath : uint32_t {
+  kFused,        // frame.comp: the strand in private arrays (the default)
+  kFusedShared,  // frame_shared.comp: the strand block in shared memory (where it fits, else kFused)
+  kPasses,       // one dispatch per pass per substep
+};
+
+// TRESSVK_SIM_PATH = "fused" (default), "fused-shared" or "passes"; read once per process. Anything else: fused.
+SimPath sim_path_from_environment();
+
+// Shared memory the shared-memory variant needs for N vertices per strand (prevprev only with VSP).
+uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool vsp);
+
+// The frame pass of a scene: FEATURES = the scene's feature bits plus kFeatureVsp / kFeatureLocalShape.
+// shared: the shared-memory variant (the caller checked that it fits).
+PassUse frame_pass_use(const SceneTerms& terms, bool shared);
+
+// Workgroups of the frame pass: one per strand block of 32 guides.
+uint32_t frame_dispatch_groups(uint32_t guide_count);
+
+}  // namespace tressvk::sim

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The simulation speed table and scaling sweep of docs/simulation.md ("Speed: the fused frame kernel"), with
+# `tressvk-bench perf` (frames in flight, no readback between timed frames, a plain copy of the frame's bytes timed
+# in the same run, the step error measured after the timed frames), for both simulation paths:
+#
+#   scripts/gpu-perf.sh OUTDIR [BINDIR [DATADIR]]
+#   python3 scripts/plot-sim-perf.py OUTDIR docs/images/sim-perf.png
+#
+# BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default: build/portable). DATADIR holds
+# tressfx/ratboy/Ratboy_mohawk.tfx (+ .tfxbone) for the Ratboy row (default: data/ beside the repository).
+# Writes one JSON file per run, table.md (the issue's table) and sweep.md. BUDGET (seconds, default 400) stops
+# starting new sweep runs once spent, so that the whole script fits a bounded GPU session; rows not run are absent.
+set -euo pipefail
+OUT=${1:?usage: gpu-perf.sh OUTDIR [BINDIR [DATADIR]]}
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BIN=${2:-}
+DATA=${3:-$ROOT/../data}
+mkdir -p "$OUT"
+if [ -z "$BIN" ]; then
+  BENCH="$ROOT/build/portable/engine/tressvk-bench"
+  BAKE="$ROOT/build/portable/baker/tressvk-bake"
+  export LD_LIBRARY_PATH="$ROOT/build/portable/plugin:${LD_LIBRARY_PATH:-}"
+else
+  BENCH="$BIN/tressvk-bench"
+  BAKE="$BIN/tressvk-bake"
+  export LD_LIBRARY_PATH="$BIN:${LD_LIBRARY_PATH:-}"
+fi
+BUDGET=${BUDGET:-400}
+MOHAWK=${MOHAWK:-$OUT/mohawk.tvkhair}  # a baked Ratboy mohawk with 2 follows; baked from DATADIR when absent
+RATBOY="$DATA/tressfx/ratboy/Ratboy_mohawk.tfx"
+if [ ! -f "$MOHAWK" ] && [ -f "$RATBOY" ]; then
+  BONES=()
+  [ -f "${RATBOY%.tfx}.tfxbone" ] && BONES=(--bones "${RATBOY%.tfx}.tfxbone")
+  "$BAKE" "$RATBOY" "${BONES[@]}" --follow 2 -o "$MOHAWK" > "$OUT/bake.log" 2>&1
+fi
+
+perf() {  # json name, path, then bench arguments
+  local name=$1 path=$2; shift 2
+  TRESSVK_SIM_PATH=$path timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||
+    echo "| $name | failed: $(tail -1 "$OUT/$name.err") |"
+}
+
+# The issue's table: Ratboy mohawk + 2 follows, curly 32,768 x 32 (1M) and 131,072 x 32 (4M guide vertices), at 60
+# and 240 Hz, both paths (and the shared-memory variant of the frame kernel at 240 Hz).
+T="--scene shake --frames 300 --warmup 60 --error-frames 2"
+{
+  echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  for rate in 60 240; do
+    for path in fused passes; do
+      [ -f "$MOHAWK" ] && perf "table-ratboy-$path-$rate" "$path" --asset "$MOHAWK" --step-rate "$rate" $T
+      perf "table-curly1M-$path-$rate" "$path" --builtin curly --guides 32768 --step-rate "$rate" $T
+      perf "table-curly4M-$path-$rate" "$path" --builtin curly --guides 131072 --step-rate "$rate" $T
+    done
+  done
+  [ -f "$MOHAWK" ] && perf "table-ratboy-fused-shared-240" fused-shared --asset "$MOHAWK" --step-rate 240 $T
+  perf "table-curly1M-fused-shared-240" fused-shared --builtin curly --guides 32768 --step-rate 240 $T
+  perf "table-curly4M-fused-shared-240" fused-shared --builtin curly --guides 131072 --step-rate 240 $T
+} | tee "$OUT/table.md"
+
+# Scaling sweep: 10k .. 16M guide vertices (curly, 32 vertices per strand) at 60/120/240 Hz, both paths; the step
+# error of each row from one frame after its timed frames.
+S="--scene shake --frames 120 --warmup 30 --error-frames 1"
+{
+  echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  for guides in 320 1024 3200 10240 32768 131072 524288; do
+    for rate in 60 120 240; do
+      for path in fused passes; do
+        if [ "$SECONDS" -gt "$BUDGET" ]; then echo "| budget of ${BUDGET} s spent: curly $guides x 32 at $rate Hz ($path) not run |"; continue; fi
+        perf "sweep-$path-$guides-$rate" "$path" --builtin curly --guides "$guides" --step-rate "$rate" $S
+      done
+    done
+  done
+} | tee "$OUT/sweep.md"
+echo "done in $SECONDS s: $OUT"

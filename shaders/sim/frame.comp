@@ -1,0 +1,17 @@
+// The fused frame kernel (frame.glsl) with the strand's state in private arrays (registers, or the GPU's per-thread
+// local memory when they do not fit): one thread per guide, 32 threads = one strand block of the layout.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "sim/layout.glsl"
+layout(local_size_x = 32) in;
+
+vec4 s_pos[N];
+vec4 s_prev[N];
+vec4 s_prevprev[N];
+uint tvk_frame_base;  // strand_base of the thread's guide: element i is vertex (i - base) / TVK_BLOCK
+#define TVK_POS(i) s_pos[((i) - tvk_frame_base) / TVK_BLOCK]
+#define TVK_PREV(i) s_prev[((i) - tvk_frame_base) / TVK_BLOCK]
+#define TVK_PREVPREV(i) s_prevprev[((i) - tvk_frame_base) / TVK_BLOCK]
+void frame_storage_begin(uint g) { tvk_frame_base = strand_base(g); }
+
+#include "sim/frame.glsl"

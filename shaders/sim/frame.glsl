@@ -1,0 +1,77 @@
+// The fused frame kernel: one dispatch per frame runs every substep and every pass the scene needs for a block of
+// strands, one thread per guide (strands never interact), with the strand's state held on chip the whole frame. The
+// state is read once and written once per frame; tangents are written after the last substep only; prevprev (VSP's
+// second history) is never read (integration overwrites it before anything reads it) and written only when VSP runs;
+// follow hairs are written at the end by their guide's thread. The pass math is the same functions the pass-per-
+// dispatch shaders call (integrate.glsl, vsp.glsl, local_shape.glsl, length.glsl, follow.glsl), run in the same
+// order, so both paths give the same float results.
+//
+// The includer (frame.comp: private arrays; frame_shared.comp: shared memory) first defines the on-chip storage:
+// TVK_POS/TVK_PREV/TVK_PREVPREV(i) for element i of the blocked layout, and frame_storage_begin(g).
+// Specialisation: FEATURES carries TVK_FEATURE_VSP and TVK_FEATURE_LOCAL_SHAPE on top of the per-pass bits, so a
+// scene without VSP, local shape, wind, collision, clamp or skinning compiles none of their code.
+#ifndef TRESSVK_SIM_FRAME_GLSL
+#define TRESSVK_SIM_FRAME_GLSL
+
+vec4 tvk_anchor_now;  // this substep's anchor of the thread's guide (integrate writes it, collision reads it)
+uint tvk_step;        // this substep's index into step_params
+uint tvk_skin_base;   // this substep's first vec4 of skinning data
+#define TVK_ANCHOR(g) tvk_anchor_now
+#define TVK_STEP tvk_step
+#define TVK_SKIN_BASE tvk_skin_base
+
+#include "sim/integrate.glsl"
+#include "sim/vsp.glsl"
+#include "sim/local_shape.glsl"
+#include "sim/length.glsl"
+#include "sim/follow.glsl"
+
+void run_substep(uint g, uint b, uint s, bool last) {
+  tvk_step = pc.step_index + s;
+  tvk_skin_base = pc.skin_base + s * pc.skin_stride;
+  for (uint v = 0u; v < N; ++v) integrate_vertex(b + v * TVK_BLOCK, g, v);
+  if (TVK_HAS(TVK_FEATURE_VSP)) {
+    for (uint v = 2u; v < N; ++v) vsp_vertex(b + v * TVK_BLOCK, g, v);
+  }
+  if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_strand(g);
+  length_strand(g, last);
+}
+
+void main() {
+  uint g = gl_GlobalInvocationID.x;
+  if (g >= pc.guide_count || pc.step_count == 0u) return;
+  frame_storage_begin(g);
+  uint b = strand_base(g);
+  for (uint v = 0u; v < N; ++v) {
+    uint i = b + v * TVK_BLOCK;
+    TVK_POS(i) = pos[i];
+    TVK_PREV(i) = prev[i];
+  }
+  // The last substep is peeled so that only it compiles the tangent writes.
+  for (uint s = 0u; s + 1u < pc.step_count; ++s) run_substep(g, b, s, false);
+  run_substep(g, b, pc.step_count - 1u, true);
+  for (uint v = 0u; v < N; ++v) {
+    uint i = b + v * TVK_BLOCK;
+    pos[i] = TVK_POS(i);
+    prev[i] = TVK_PREV(i);
+    if (TVK_HAS(TVK_FEATURE_VSP)) prevprev[i] = TVK_PREVPREV(i);
+  }
+  anchor[g] = tvk_anchor_now;
+
+  if (K > 0u) {
+    // Follow hairs from the final guide (skinning data of the last substep, as the follow pass).
+    float tip_separation = guide_params(g).tip_separation;
+    uint G = pc.guide_count;
+    for (uint f = 0u; f < K; ++f) {
+      vec3 offset = follow_root_offset(g, f);
+      uint strand = G + f * G + g;
+      for (uint v = 0u; v < N; ++v) {
+        uint dst = vertex_index(strand, v);
+        pos[dst] = follow_vertex(TVK_POS(b + v * TVK_BLOCK), offset, tip_separation, v);
+        tangent[dst] = tangent[b + v * TVK_BLOCK];
+      }
+    }
+  }
+}
+
+#endif

@@ -1,0 +1,45 @@
+# cmake -P script (see CMakeLists.txt): tressvk-bench perf on lavapipe with validation + synchronization validation,
+# on both simulation paths: the JSON has every key the issue asks for, the fused path records one dispatch per frame
+# whatever the substeps (240 Hz: 4 or 5), the pass-per-dispatch path one per pass per substep, and both paths' step
+# error is within the reference agreement bar (1e-5 of the median strand length). No timing is asserted (speed
+# lives in the bench's numbers, not in tests).
+foreach(var BENCH OUT_DIR)
+  if(NOT ${var})
+    message(FATAL_ERROR "run_bench_perf_test.cmake: ${var} is not set")
+  endif()
+endforeach()
+file(REMOVE_RECURSE "${OUT_DIR}")
+file(MAKE_DIRECTORY "${OUT_DIR}")
+
+foreach(path fused passes)
+  set(json "${OUT_DIR}/${path}.json")
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "TRESSVK_SIM_PATH=${path}"
+                          "${BENCH}" perf --builtin curly --guides 40 --follows 1 --scene shake --frames 4 --warmup 2
+                          --error-frames 2 --validation --json "${json}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "tressvk-bench perf (${path}) failed (${rc}):\n${out}\n${err}")
+  endif()
+  file(READ "${json}" text)
+  foreach(key gpu_ms_per_frame gpu_ms_per_frame_p99 bytes_per_frame achieved_gb_per_s copy_gb_per_s
+              dispatches_per_frame step_error_max_rel steps_per_frame guide_vertices)
+    string(JSON value ERROR_VARIABLE missing GET "${text}" ${key})
+    if(missing)
+      message(FATAL_ERROR "perf (${path}): key ${key} missing from ${json}")
+    endif()
+    if(NOT value GREATER 0)
+      message(FATAL_ERROR "perf (${path}): ${key} is ${value}, expected > 0")
+    endif()
+    set(${key} "${value}")
+  endforeach()
+  if(path STREQUAL "fused" AND NOT dispatches_per_frame EQUAL 1)
+    message(FATAL_ERROR "perf (fused): ${dispatches_per_frame} dispatches per frame, expected 1")
+  endif()
+  if(path STREQUAL "passes" AND NOT dispatches_per_frame GREATER 4)
+    message(FATAL_ERROR "perf (passes): ${dispatches_per_frame} dispatches per frame, expected one per pass per substep")
+  endif()
+  if(step_error_max_rel GREATER 1e-5)
+    message(FATAL_ERROR "perf (${path}): step error ${step_error_max_rel} over 1e-5")
+  endif()
+  message(STATUS "${path}: ${dispatches_per_frame} dispatches/frame, step error ${step_error_max_rel}")
+endforeach()
