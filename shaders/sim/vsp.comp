@@ -1,4 +1,4 @@
-// Pass 2, one thread per guide vertex (v >= 2, movable): velocity shock propagation. Each thread derives its
+// Pass 2, one thread per guide vertex (movable, of a strand with a pinned root): velocity shock propagation. Each thread derives its
 // strand's root rigid motion of this step itself (the skinning rotation since the previous step about the root
 // vertex, plus the root vertex's translation), so no strand-level pass or buffer is needed; then moves the vertex
 // by coefficient * (this step's rigid motion - the damped previous one that integration already carried).
@@ -13,14 +13,17 @@ void main() {
   uint g = sv.x;
   uint v = sv.y;
   if (g >= pc.guide_count) return;
-  if (v < 2u) return;
+  if (v < 1u) return;
   vec4 x = pos[i];
   if (!(x.w > 0.0)) return;
 
   GroupParams gp = guide_params(g);
   if (!(gp.vsp_coefficient > 0.0)) return;  // VSP off for this group (the pass runs for another group)
   uint b = strand_base(g);
-  uint b1 = b + TVK_BLOCK;
+  // Any pin count: the root's rigid motion needs a pinned root, and the acceleration is measured at the last pinned
+  // root vertex (vertex 1 when two or more are pinned). Only pinned vertices are read, which nothing writes.
+  if (pos[b].w > 0.0) return;
+  uint b1 = pos[b + TVK_BLOCK].w > 0.0 ? b : b + TVK_BLOCK;
   vec3 p0 = pos[b].xyz, p1 = pos[b1].xyz;
   vec3 q0 = prev[b].xyz, q1 = prev[b1].xyz;
   vec3 r0 = prevprev[b].xyz, r1 = prevprev[b1].xyz;

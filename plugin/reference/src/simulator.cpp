@@ -220,10 +220,12 @@ void Simulator::vsp(const Substep& st) {
     const GroupStep& gp = group_of(g);
     if (!(gp.vsp_coefficient > 0.0)) continue;
     const size_t b = size_t{g} * n;
-    // Every vertex of the strand reads the root state of this step before any vertex is written (the GPU
-    // threads never write vertices 0 and 1, so the order does not matter there either).
-    const Vec3 p0 = pos_[b], p1 = pos_[b + 1], q0 = prev_[b], q1 = prev_[b + 1], r0 = prevprev_[b],
-               r1 = prevprev_[b + 1];
+    // The root's rigid motion needs a pinned root; the acceleration is measured at the last pinned root vertex,
+    // vertex 1 when two or more are pinned (GLSL twin: vsp.comp). Every vertex reads only pinned vertices of the
+    // strand, which nothing writes, so the order does not matter.
+    if (!(rest_.inv_mass[b] == 0.0)) continue;
+    const size_t a = rest_.inv_mass[b + 1] == 0.0 ? b + 1 : b;
+    const Vec3 p0 = pos_[b], p1 = pos_[a], q0 = prev_[b], q1 = prev_[a], r0 = prevprev_[b], r1 = prevprev_[a];
     const double accel = length((p1 - q1) - (q1 - r1));
     const double ramp = std::clamp((accel - 0.75 * gp.vsp_threshold) / (0.25 * gp.vsp_threshold), 0.0, 1.0);
     const double c = gp.vsp_coefficient + ramp * (1.0 - gp.vsp_coefficient);
@@ -231,7 +233,7 @@ void Simulator::vsp(const Substep& st) {
     const Quat swing = skin_delta(st, g);
     const Quat swing_before = skin_delta_before(st, g);
     const Vec3 t = p0 - q0, t_before = q0 - r0;
-    for (uint32_t v = 2; v < n; ++v) {
+    for (uint32_t v = 1; v < n; ++v) {
       const size_t i = b + v;
       if (!(rest_.inv_mass[i] > 0.0)) continue;
       // See vsp.comp: this step's rigid motion at the vertex's start-of-step position, less the previous step's
