@@ -33,10 +33,11 @@ class Simulator {
   // The length constraints' scheme. kFollowTheLeader (the default, what the GPU runs): follow-the-leader with the
   // DFTL velocity correction (tip-pinned strands: a tridiagonal Newton solve). kNewmark (reference only, opt-in):
   // every strand by a tridiagonal Newton solve with an implicit transverse response (the average-acceleration rule):
-  // a hanging chain's period within 0.1 % of the discrete value and <= 0.1 % amplitude loss per period at damping 0 for
-  // N 16-64 at 120-480 Hz (N 64 at 60 Hz: -1.8 %, 5.7 %), where DFTL gives -7 to -29 % and 58 % loss. Not the default
-  // yet: with local shape on the curly groom the rest pose is not stable under it (a drift of 0.2 L in 2 s without
-  // gravity), and the GPU has no twin (docs/accuracy.md).
+  // a hanging chain's period within 0.05 % of the discrete value and <= 0.4 % amplitude loss per period at damping 0
+  // for N 16-64 at 60-480 Hz (N 64 at 60 Hz: -2.1 %, 5.9 %), where DFTL gives -7 to -29 % and 58 % loss. Not the
+  // default yet: local shape adds energy at few iterations, which DFTL's damping hid (the curly rest pose without
+  // gravity grows from rounding by about x1.034 per step at 2 local iterations, 0.31 L in 2 s at 1), and the GPU has
+  // no twin (docs/accuracy.md).
   enum class LengthModel { kFollowTheLeader, kNewmark };
   void set_length_model(LengthModel m) { length_model_ = m; }
   const std::vector<TvkSimParams>& params() const { return params_; }
