@@ -31,7 +31,7 @@ void run_substep(uint g, uint b, uint s, bool last) {
   tvk_skin_base = pc.skin_base + s * pc.skin_stride;
   for (uint v = 0u; v < N; ++v) integrate_vertex(b + v * TVK_BLOCK, g, v);
   if (TVK_HAS(TVK_FEATURE_VSP)) {
-    for (uint v = 2u; v < N; ++v) vsp_vertex(b + v * TVK_BLOCK, g, v);
+    for (uint v = 1u; v < N; ++v) vsp_vertex(b + v * TVK_BLOCK, g, v);
   }
   if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_strand(g);
   length_strand(g, last);

@@ -1,5 +1,5 @@
-// Pass 2, one thread per guide vertex (v >= 2, movable): velocity shock propagation. Each thread derives its
-// strand's root rigid motion of this step itself (the skinning rotation since the previous step about the root
+// Pass 2, one thread per guide vertex (movable, of a strand with a pinned root): velocity shock propagation. Each
+// thread derives its strand's root rigid motion of this step itself (the skinning rotation since the previous step about the root
 // vertex, plus the root vertex's translation), so no strand-level pass or buffer is needed; then moves the vertex
 // by coefficient * (this step's rigid motion - the damped previous one that integration already carried).
 #version 450

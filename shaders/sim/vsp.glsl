@@ -4,14 +4,17 @@
 #include "sim/common.glsl"
 
 void vsp_vertex(uint i, uint g, uint v) {
-  if (v < 2u) return;
+  if (v < 1u) return;
   vec4 x = TVK_POS(i);
   if (!(x.w > 0.0)) return;
 
   GroupParams gp = guide_params(g);
   if (!(gp.vsp_coefficient > 0.0)) return;  // VSP off for this group (the pass runs for another group)
   uint b = strand_base(g);
-  uint b1 = b + TVK_BLOCK;
+  // Any pin count: the root's rigid motion needs a pinned root, and the acceleration is measured at the last pinned
+  // root vertex (vertex 1 when two or more are pinned). Only pinned vertices are read, which nothing writes.
+  if (TVK_POS(b).w > 0.0) return;
+  uint b1 = TVK_POS(b + TVK_BLOCK).w > 0.0 ? b : b + TVK_BLOCK;
   vec3 p0 = TVK_POS(b).xyz, p1 = TVK_POS(b1).xyz;
   vec3 q0 = TVK_PREV(b).xyz, q1 = TVK_PREV(b1).xyz;
   vec3 r0 = TVK_PREVPREV(b).xyz, r1 = TVK_PREVPREV(b1).xyz;

@@ -1,5 +1,6 @@
 #include "tressvk/model/planner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -129,29 +130,50 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   if (frame.teleport || pending_reset_) {
     last_ = now;
     last_bones_ = bones_now;
+    host_last_ = now;
+    host_last_bones_ = bones_now;
   }
   if (last_bones_.size() != bones_now.size()) last_bones_ = bones_now;
+  if (host_last_bones_.size() != bones_now.size()) host_last_bones_ = bones_now;
 
-  // Accumulate in units of steps; the tiny epsilon makes e.g. 1/60 s at 120 Hz count as exactly 2 steps.
-  accumulator_ += static_cast<double>(frame.dt) * static_cast<double>(settings_.time.step_rate);
-  double whole = std::floor(accumulator_ + 1e-9);
+  // Accumulate in units of steps; the epsilon (1e-6 steps, far above float dt rounding) makes e.g. 1/60 s at 120 Hz
+  // count as exactly 2 steps.
+  const double elapsed = accumulator_;  // steps' worth of time between the last step and the previous frame
+  const double span = static_cast<double>(frame.dt) * static_cast<double>(settings_.time.step_rate);
+  accumulator_ += span;
+  double whole = std::floor(accumulator_ + 1e-6);
   uint32_t n = static_cast<uint32_t>(whole);
   FramePlan plan;
   plan.skinned = skinned;
+  // A leftover below 1e-6 steps is the float rounding of dt (1/60 s is 4.00000016 steps at 240 Hz), not time: dropped,
+  // so a host rate that divides the step rate puts every frame's last step exactly at the frame's pose.
   accumulator_ = std::max(0.0, accumulator_ - whole);
+  if (accumulator_ < 1e-6) accumulator_ = 0.0;
+  // Step k of this frame (k = 1..n) happens k step lengths after the last step, at this fraction of the way from the
+  // previous frame's host pose to this one's: the host poses are sampled at the steps' true times, so a host rate
+  // that does not divide the step rate (144, 165 Hz) moves the head at the right times (spreading the frame's motion
+  // evenly over its steps put it up to a step early or late: a tip off by 3 % of its length at 144 Hz).
+  auto step_fraction = [&](uint32_t k) {
+    const double at = static_cast<double>(k) - elapsed;  // steps' worth of time into the frame
+    return span > 0.0 && at < span - 1e-6 ? std::clamp(at / span, 0.0, 1.0) : 1.0;
+  };
+  auto host_pose = [&](double alpha) {
+    return alpha == 1.0 ? now : Pose{mix(host_last_.t, now.t, alpha), slerp(host_last_.r, now.r, alpha)};
+  };
   // A reset step counts toward the cap, so a frame never plans more than max_steps_per_frame steps in all.
   const uint32_t step_cap = settings_.time.max_steps_per_frame - (pending_reset_ ? 1u : 0u);
+  uint32_t first = 1;  // the first of the frame's steps that is simulated
   if (n > step_cap) {
     plan.dropped_steps = n - step_cap;
     // Hitch: the instance motion of the dropped steps carries the hair rigidly (like a teleport: no velocity is
     // added), and the last max_steps_per_frame steps simulate the end of the motion at its real speed. Squeezing
     // the whole motion into the kept steps would multiply velocities by n/max (16 m/s hair tips for a head turn).
     if (!pending_reset_) {
-      const double alpha = static_cast<double>(plan.dropped_steps) / static_cast<double>(n);
-      const Pose mid{mix(last_.t, now.t, alpha), slerp(last_.r, now.r, alpha)};
+      const Pose mid = host_pose(step_fraction(plan.dropped_steps));
       add_carry(last_, mid);
       last_ = mid;
     }
+    first = plan.dropped_steps + 1;
     n = step_cap;
   }
 
@@ -249,24 +271,24 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     carry_ = Carry{};
   }
 
-  // Every step's translation is an equal slice of the frame's, formed as a difference of doubles, and the
-  // translation is handled as base + fraction, so a far instance yields bit-identical steps.
-  const Vec3 slice = n > 0 ? (now.t - last_.t) / static_cast<double>(n) : Vec3{};
-  const Vec3 frac0 = last_.t - base;
-  for (uint32_t k = 1; k <= n; ++k) {
-    double alpha = static_cast<double>(k) / static_cast<double>(n);
-    Pose pose{mix(last_.t, now.t, alpha), slerp(last_.r, now.r, alpha)};
-    Vec3 t_frac = frac0 + static_cast<double>(k) * slice;
-    if (k == n) {
-      pose = now;
-      t_frac = now.t - base;
-    }
+  // Every step's translation is a fraction of the frame's, formed as a difference of doubles, and the translation
+  // is handled as base + fraction, so a far instance yields bit-identical steps.
+  const Vec3 delta = now.t - host_last_.t;
+  const Vec3 frac0 = host_last_.t - base;
+  Pose last_pose = last_;
+  std::vector<Pose> last_pose_bones = last_bones_;
+  for (uint32_t s = 0; s < n; ++s) {
+    const double alpha = step_fraction(first + s);
+    Pose pose = host_pose(alpha);
+    Vec3 t_frac = alpha == 1.0 ? now.t - base : frac0 + alpha * delta;
     std::vector<Pose> bones;
     for (size_t b = 0; b < bones_now.size(); ++b) {
-      bones.push_back(k == n ? bones_now[b]
-                             : Pose{mix(last_bones_[b].t, bones_now[b].t, alpha),
-                                    slerp(last_bones_[b].r, bones_now[b].r, alpha)});
+      bones.push_back(alpha == 1.0 ? bones_now[b]
+                                   : Pose{mix(host_last_bones_[b].t, bones_now[b].t, alpha),
+                                          slerp(host_last_bones_[b].r, bones_now[b].r, alpha)});
     }
+    last_pose = pose;
+    last_pose_bones = bones;
     ++step_counter_;
     Vec3 res;
     const Vec3 o = origin_of(t_frac, pose.r, res);
@@ -334,9 +356,11 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
     plan.steps.push_back(st);
   }
   if (n > 0) {
-    last_ = now;
-    last_bones_ = bones_now;
+    last_ = last_pose;
+    last_bones_ = last_pose_bones;
   }
+  host_last_ = now;
+  host_last_bones_ = bones_now;
   plan.sim_origin = {origin_.x, origin_.y, origin_.z};
   return plan;
 }

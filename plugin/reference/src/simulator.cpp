@@ -19,6 +19,9 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
   prevprev_.assign(rest_.rest_pos.size(), Vec3{});
   seg_cp_.assign(rest_.vertices_per_strand, 0.0);
   seg_dp_.assign(rest_.vertices_per_strand, 0.0);
+  lam_.assign(rest_.vertices_per_strand, 0.0);
+  move_.assign(rest_.vertices_per_strand, Vec3{});
+  tdp_.assign(rest_.vertices_per_strand, Vec3{});
 }
 
 void Simulator::set_params(std::span<const TvkSimParams> group_params) {
@@ -217,10 +220,12 @@ void Simulator::vsp(const Substep& st) {
     const GroupStep& gp = group_of(g);
     if (!(gp.vsp_coefficient > 0.0)) continue;
     const size_t b = size_t{g} * n;
-    // Every vertex of the strand reads the root state of this step before any vertex is written (the GPU
-    // threads never write vertices 0 and 1, so the order does not matter there either).
-    const Vec3 p0 = pos_[b], p1 = pos_[b + 1], q0 = prev_[b], q1 = prev_[b + 1], r0 = prevprev_[b],
-               r1 = prevprev_[b + 1];
+    // The root's rigid motion needs a pinned root; the acceleration is measured at the last pinned root vertex,
+    // vertex 1 when two or more are pinned (GLSL twin: vsp.comp). Every vertex reads only pinned vertices of the
+    // strand, which nothing writes, so the order does not matter.
+    if (!(rest_.inv_mass[b] == 0.0)) continue;
+    const size_t a = rest_.inv_mass[b + 1] == 0.0 ? b + 1 : b;
+    const Vec3 p0 = pos_[b], p1 = pos_[a], q0 = prev_[b], q1 = prev_[a], r0 = prevprev_[b], r1 = prevprev_[a];
     const double accel = length((p1 - q1) - (q1 - r1));
     const double ramp = std::clamp((accel - 0.75 * gp.vsp_threshold) / (0.25 * gp.vsp_threshold), 0.0, 1.0);
     const double c = gp.vsp_coefficient + ramp * (1.0 - gp.vsp_coefficient);
@@ -228,7 +233,7 @@ void Simulator::vsp(const Substep& st) {
     const Quat swing = skin_delta(st, g);
     const Quat swing_before = skin_delta_before(st, g);
     const Vec3 t = p0 - q0, t_before = q0 - r0;
-    for (uint32_t v = 2; v < n; ++v) {
+    for (uint32_t v = 1; v < n; ++v) {
       const size_t i = b + v;
       if (!(rest_.inv_mass[i] > 0.0)) continue;
       // See vsp.comp: this step's rigid motion at the vertex's start-of-step position, less the previous step's
@@ -285,19 +290,24 @@ Vec3 constraint_direction(Vec3 d, Vec3 was, double rest) {
 }
 }  // namespace
 
-void Simulator::solve_tip_pinned(size_t b) {
+void Simulator::solve_lengths(size_t b) {
   // One Newton step of C_v(x) = |x_{v+1} - x_v| - rest_v = 0 for every segment at once. The correction moves each free
   // vertex along the segments' directions midway between the start of the step and now (m_v; the implicit midpoint
   // rule, which dissipates nothing), by multipliers lambda from the tridiagonal system
   //   (W_v + W_{v+1}) (g_v . m_v) lambda_v - W_v (g_v . m_{v-1}) lambda_{v-1} - W_{v+1} (g_v . m_{v+1}) lambda_{v+1}
   //     = C_v,
   // g_v the constraint gradient now, W 1 for a free vertex and 0 for a pinned one (Thomas algorithm; a row of two
-  // pinned vertices is lambda_v = 0). Then x_v += lambda_v m_v - lambda_{v-1} m_{v-1}. GLSL twin: length.comp.
+  // pinned vertices is lambda_v = 0). Then x_v += lambda_v m_v - lambda_{v-1} m_{v-1}. GLSL twin: solve_lengths in
+  // length.comp (solve_tip_pinned; the Newmark model has no GPU twin yet).
   const uint32_t n = rest_.vertices_per_strand, m = n - 1;
   auto w = [&](uint32_t v) { return rest_.inv_mass[b + v] > 0.0 ? 1.0 : 0.0; };
   auto mid_dir = [&](uint32_t v, Vec3 g) {
     const Vec3 d = pos_[b + v + 1] - pos_[b + v];
     const Vec3 was = prev_[b + v + 1] - prev_[b + v];
+    // The Newmark model moves along the gradient (a projection; implicit_transverse then moves the transverse
+    // response to the average-acceleration rule); the follow-the-leader model's tip-pinned solve along the direction
+    // midway between the start of the step and now.
+    if (length_model_ == LengthModel::kNewmark) return g;
     const Vec3 mid = constraint_direction(0.5 * (d + was), was, rest_.rest_length[b + v]);
     return dot(g, mid) > 0.5 ? mid : g;
   };
@@ -313,7 +323,8 @@ void Simulator::solve_tip_pinned(size_t b) {
       m_next = mid_dir(v + 1, g_next);
     }
     const double wa = w(v), wb = w(v + 1);
-    const bool active = wa + wb > 0.0;
+    // A segment with no defined direction (g = 0: vanished, with no history) has no row: lambda = 0.
+    const bool active = wa + wb > 0.0 && (length_model_ != LengthModel::kNewmark || dot(g_here, m_here) > 0.25);
     const double diag = active ? (wa + wb) * dot(g_here, m_here) : 1.0;
     const double c = active ? dot(pos_[b + v + 1] - pos_[b + v], g_here) - rest_.rest_length[b + v] : 0.0;
     const double sub = active && v > 0 ? -wa * dot(g_here, m_before) : 0.0;
@@ -352,8 +363,58 @@ void Simulator::solve_tip_pinned(size_t b) {
   m_prev = Vec3{};
   for (uint32_t v = 0; v < n; ++v) {
     const Vec3 m_v = v < m ? mid_dir(v, grad(v)) : Vec3{};  // from positions not yet moved (v and v + 1)
-    if (w(v) > 0.0) pos_[b + v] += scale * move_of(v, m_v, m_prev);
+    if (w(v) > 0.0) {
+      const Vec3 dx = scale * move_of(v, m_v, m_prev);
+      pos_[b + v] += dx;
+      move_[v] += dx;
+    }
     m_prev = m_v;
+  }
+  for (uint32_t v = 0; v < m; ++v) lam_[v] += scale * seg_dp_[v];  // for implicit_transverse (Newmark model)
+}
+
+void Simulator::implicit_transverse(size_t b, double alpha) {
+  // The Newton steps moved the strand from its predicted state x~ to x1 by move_ (the constraint forces, h^2 T along
+  // the segments) with the directions of x~: explicit in the strand's transverse motion, whose stiffness is the
+  // tension over the segment length (A u_v = sum over the segments s at v of (lam_s / rest_s) (u_v - u_other), per
+  // unit mass and h^2). Explicit is stable only while h sqrt(4 T / rest) < 2, which a long, finely divided or short
+  // strand at a low step rate is not (a hanging 32-vertex 0.3 m chain at 120 Hz, 64 vertices at 240 Hz). This moves
+  // the force to the average-acceleration (Newmark beta 1/4) state, x* = x~ - A (x*/4 + x_n/2 + x_{n-1}/4) + ...:
+  //   (I + alpha A) delta = -A (x1/4 + x_n/2 + x_{n-1}/4 - x~),  alpha = 1/4,
+  // a tridiagonal solve per coordinate (pinned vertices: delta = 0; compression: no stiffness). Unconditionally
+  // stable and without numerical dissipation in the linear regime; the follow-the-leader clean-up after it restores
+  // the lengths (the longitudinal part of delta is second order).
+  const uint32_t n = rest_.vertices_per_strand, m = n - 1;
+  auto k = [&](uint32_t seg) { return alpha * std::max(lam_[seg], 0.0) / rest_.rest_length[b + seg]; };
+  auto free_v = [&](uint32_t v) { return rest_.inv_mass[b + v] > 0.0; };
+  // Row v: -k_{v-1} delta_{v-1} + (1 + k_{v-1} + k_v) delta_v - k_v delta_{v+1} = -(alpha A move)_v.
+  double cp_before = 0.0;
+  Vec3 dp_before{};
+  for (uint32_t v = 0; v < n; ++v) {
+    const double kl = v > 0 ? k(v - 1) : 0.0, kr = v < m ? k(v) : 0.0;
+    if (!free_v(v)) {
+      seg_cp_[v] = 0.0;
+      tdp_[v] = Vec3{};
+    } else {
+      Vec3 rhs{};
+      auto c = [&](uint32_t u) {  // (the state the force should see - the predicted state it saw) / alpha
+        const Vec3 x1 = pos_[b + u], xt = x1 - move_[u];
+        return (1.0 / alpha) * (0.25 * x1 + 0.5 * prev_[b + u] + 0.25 * prevprev_[b + u] - xt);
+      };
+      if (v > 0) rhs -= kl * (c(v) - c(v - 1));
+      if (v < m) rhs -= kr * (c(v) - c(v + 1));
+      const double sub = v > 0 && free_v(v - 1) ? -kl : 0.0;
+      const double sup = v < m && free_v(v + 1) ? -kr : 0.0;
+      const double den = 1.0 + kl + kr - sub * cp_before;
+      seg_cp_[v] = sup / den;
+      tdp_[v] = (rhs - sub * dp_before) / den;
+    }
+    cp_before = seg_cp_[v];
+    dp_before = tdp_[v];
+  }
+  for (uint32_t v = m; v-- > 0;) tdp_[v] -= seg_cp_[v] * tdp_[v + 1];
+  for (uint32_t v = 0; v < n; ++v) {
+    if (free_v(v)) pos_[b + v] += tdp_[v];
   }
 }
 
@@ -432,7 +493,37 @@ void Simulator::length_and_collision(const Substep& st) {
       if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
       if (dftl && wa == 0.0 && wb > 0.0 && movable(b + v)) prev_[b + v] -= kFtlVelocityCorrection * corr;
     };
-    if (movable(b + n - 1)) {
+    if (length_model_ == LengthModel::kNewmark) {
+      // LengthModel::kNewmark (opt-in, not yet the default: see simulator.hpp). Every strand alike:
+      // a Newton step of the whole strand's constraint system (solve_lengths: a tridiagonal solve moving each vertex
+      // along the constraint gradients; no velocity correction, so p - q stays the velocity), its transverse response
+      // moved to the average-acceleration rule (implicit_transverse: stable at every step rate and without numerical
+      // dissipation), length_iterations - 1 more Newton steps (projections of what is left), then a positions-only
+      // follow-the-leader clean-up for the rest (second order in the step's move). A root-pinned (or free) strand is cleaned up from the root; one pinned at both ends
+      // from both ends toward its middle segment.
+      std::fill(move_.begin(), move_.end(), Vec3{});
+      std::fill(lam_.begin(), lam_.end(), 0.0);
+      solve_lengths(b);
+      implicit_transverse(b, 0.25);
+      for (uint32_t it = 1; it < gp.length_iterations; ++it) solve_lengths(b);
+      if (movable(b + n - 1)) {
+        for (uint32_t v = 0; v + 1 < n; ++v) {
+          const double wb = movable(b + v + 1) ? 1.0 : 0.0;
+          segment(v, (movable(b + v) && !(wb > 0.0)) ? 1.0 : 0.0, wb, false);
+        }
+      } else {
+        const uint32_t split = (n - 1) / 2;
+        for (uint32_t v = 0; v < split; ++v) {
+          const double wb = movable(b + v + 1) ? 1.0 : 0.0;
+          segment(v, (movable(b + v) && !(wb > 0.0)) ? 1.0 : 0.0, wb, false);
+        }
+        for (uint32_t v = n - 2; v > split; --v) {
+          const double wa = movable(b + v) ? 1.0 : 0.0;
+          segment(v, wa, (movable(b + v + 1) && !(wa > 0.0)) ? 1.0 : 0.0, false);
+        }
+        segment(split, movable(b + split) ? 1.0 : 0.0, movable(b + split + 1) ? 1.0 : 0.0, false);
+      }
+    } else if (movable(b + n - 1)) {
       for (uint32_t it = 0; it < gp.length_iterations; ++it) {
         const bool last_sweep = it + 1 == gp.length_iterations;
         for (uint32_t v = 0; v + 1 < n; ++v) {
@@ -445,9 +536,9 @@ void Simulator::length_and_collision(const Substep& st) {
       // A strand pinned at its tip too (TressFX bothEndsImmovable): follow-the-leader from the root would leave the
       // step's whole error in the segment next to the pinned tip (335 % stretch measured on a hanging catenary), and
       // from both ends the two halves slide against their middle (170 % there). Instead length_iterations Newton
-      // steps of the whole strand's constraint system (solve_tip_pinned), then a follow-the-leader clean-up from both
+      // steps of the whole strand's constraint system (solve_lengths), then a follow-the-leader clean-up from both
       // ends toward the middle segment for what the linearisation left, which moves positions only.
-      for (uint32_t it = 0; it < gp.length_iterations; ++it) solve_tip_pinned(b);
+      for (uint32_t it = 0; it < gp.length_iterations; ++it) solve_lengths(b);
       const uint32_t split = (n - 1) / 2;
       for (uint32_t v = 0; v < split; ++v) {
         const double wb = movable(b + v + 1) ? 1.0 : 0.0;

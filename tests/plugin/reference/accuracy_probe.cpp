@@ -1,8 +1,11 @@
 // Prints the model-accuracy numbers docs/accuracy.md quotes, from the double reference: the hanging chain's period and
 // decay per period (N x step rate x length sweeps), the cantilever's tip sag (N x step rate x local iterations) and
 // the convergence of a shaken strand's trajectory as the step rate doubles. A diagnostic, not a test.
-//   tressvk_accuracy_probe [chain|cantilever|convergence]...
+//   tressvk_accuracy_probe [chain|cantilever|convergence|rest]...
+// Environment: TVK_LENGTH_MODEL=newmark (the reference's Newmark length model); for `rest`, TVK_LOCAL / TVK_GLOBAL
+// (stiffness) and TVK_LIT (local iterations) override the defaults.
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "analytic.hpp"
@@ -12,13 +15,16 @@ using namespace tvk_analytic;
 
 namespace {
 
+// TVK_LENGTH_MODEL=newmark runs every setup on the reference's Newmark length model (default: follow-the-leader).
+LengthModel g_model = LengthModel::kFollowTheLeader;
+
 void chain() {
   std::printf("# hanging chain L 0.3 m, damping 0: period error vs the discrete chain, amplitude kept per period\n");
   std::printf("N,rate_hz,length_iterations,period_s,expected_s,error,kept_per_period\n");
   for (uint32_t n : {16u, 32u, 64u})
     for (double rate : {60.0, 120.0, 240.0, 480.0})
-      for (uint32_t li : {1u, 2u}) {
-        const SwingResult r = swing(reference_factory(), n, rate, 0.0f, 9.0, 0.3, 0.003, li);
+      for (uint32_t li : {1u, 2u, 4u, 8u}) {
+        const SwingResult r = swing(reference_factory(g_model), n, rate, 0.0f, 9.0, 0.3, 0.003, li);
         const double e = chain_first_mode(n, 0.3).period;
         std::printf("%u,%.0f,%u,%.4f,%.4f,%+.4f,%.4f\n", n, rate, li, r.period, e, r.period / e - 1.0, r.amplitude_ratio);
       }
@@ -30,7 +36,7 @@ double cantilever_sag(uint32_t n, double rate, uint32_t iterations) {
   for (uint32_t v = 0; v < n; ++v) pts.push_back({0.2 * v / (n - 1), 0, 0});
   TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
   p.local_iterations = iterations;
-  auto run = reference_factory()(strand_asset(pts, 2), p, settings_at(rate));
+  auto run = reference_factory(g_model)(strand_asset(pts, 2), p, settings_at(rate));
   for (uint32_t f = 0; f < 600; ++f) run->frame(still_frame());
   const std::vector<Vec3> x = run->positions();
   return x.front().y - x.back().y;
@@ -59,7 +65,7 @@ void convergence() {
         double median = 0;
         std::vector<std::vector<std::vector<Vec3>>> runs;
         const std::vector<double> rates = {240.0, 480.0, 960.0, 1920.0, 3840.0};
-        for (double r : rates) runs.push_back(trajectory(a, p, r, scene, 30, &median));
+        for (double r : rates) runs.push_back(trajectory(a, p, r, scene, 30, &median, g_model));
         for (size_t k = 0; k + 1 < runs.size(); ++k) {
           const auto e = tressvk::reference::trajectory_error(runs[k], runs[k + 1], median);
           std::printf("%s,%s,%s,%.0f,%.3e,%.3e\n", groom, scene, chain_only ? "chain" : "defaults", rates[k], e.rms_rel,
@@ -68,15 +74,45 @@ void convergence() {
       }
 }
 
+// The rest pose without gravity, defaults, per groom: largest distance from the rest pose (/ median length) every
+// 10 frames (a stable model stays at rounding level).
+void rest() {
+  std::printf("groom,frame,max_drift_rel\n");
+  for (const char* name : {"straight", "curly", "long128"}) {
+    auto a = tvk_test::groom(name, 32, 1);
+    TvkSimSettings s = tvk_test::default_settings();
+    s.gravity[1] = 0.0f;
+    TvkSimParams p = tvk_test::default_params();
+    if (const char* e = std::getenv("TVK_LOCAL")) p.local_stiffness = static_cast<float>(std::atof(e));
+    if (const char* e = std::getenv("TVK_GLOBAL")) p.global_stiffness = static_cast<float>(std::atof(e));
+    if (const char* e = std::getenv("TVK_LIT")) p.local_iterations = static_cast<uint32_t>(std::atoi(e));
+    tressvk::reference::Simulator sim = tvk_test::make_sim(a, p, s);
+    sim.set_length_model(g_model);
+    const auto geo = tressvk::reference::scene_geometry(sim.rest());
+    const auto first = sim.advance(tressvk::reference::scene_frame("settle", 0, geo));
+    std::vector<Vec3> r;
+    for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) r.push_back(sim.skinned_rest(first.steps[0], i));
+    for (uint32_t f = 1; f <= 120; ++f) {
+      sim.advance(tressvk::reference::scene_frame("settle", f, geo));
+      if (f % 10) continue;
+      double worst = 0;
+      for (size_t i = 0; i < r.size(); ++i) worst = std::max(worst, length(sim.positions()[i] - r[i]));
+      std::printf("%s,%u,%.3e\n", name, f, worst / sim.median_strand_length());
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "newmark") == 0) g_model = LengthModel::kNewmark;
   for (int i = 1; i < argc || argc == 1; ++i) {
     const char* what = argc == 1 ? "all" : argv[i];
     const bool all = std::strcmp(what, "all") == 0;
     if (all || std::strcmp(what, "chain") == 0) chain();
     if (all || std::strcmp(what, "cantilever") == 0) cantilever();
     if (all || std::strcmp(what, "convergence") == 0) convergence();
+    if (std::strcmp(what, "rest") == 0) rest();
     if (argc == 1) break;
   }
   return 0;

@@ -195,10 +195,15 @@ class StrandRun {
 using RunFactory = std::function<std::unique_ptr<StrandRun>(const tressvk::asset::HairAsset&, const TvkSimParams&,
                                                             const TvkSimSettings&)>;
 
+using LengthModel = tressvk::reference::Simulator::LengthModel;
+
 class ReferenceRun final : public StrandRun {
  public:
-  ReferenceRun(const tressvk::asset::HairAsset& a, const TvkSimParams& p, const TvkSimSettings& s)
-      : sim_(a, std::span<const TvkSimParams>(&p, 1), s) {}
+  ReferenceRun(const tressvk::asset::HairAsset& a, const TvkSimParams& p, const TvkSimSettings& s,
+               LengthModel model = LengthModel::kFollowTheLeader)
+      : sim_(a, std::span<const TvkSimParams>(&p, 1), s) {
+    sim_.set_length_model(model);
+  }
   void frame(const TvkSimFrame& f) override { plan_ = sim_.advance(f); }
   std::vector<Vec3> positions() override {
     auto p = sim_.positions();
@@ -214,9 +219,9 @@ class ReferenceRun final : public StrandRun {
   tressvk::reference::FramePlan plan_;
 };
 
-inline RunFactory reference_factory() {
-  return [](const tressvk::asset::HairAsset& a, const TvkSimParams& p, const TvkSimSettings& s) {
-    return std::unique_ptr<StrandRun>(new ReferenceRun(a, p, s));
+inline RunFactory reference_factory(LengthModel model = LengthModel::kFollowTheLeader) {
+  return [model](const tressvk::asset::HairAsset& a, const TvkSimParams& p, const TvkSimSettings& s) {
+    return std::unique_ptr<StrandRun>(new ReferenceRun(a, p, s, model));
   };
 }
 
@@ -353,11 +358,13 @@ inline SwingResult swing(const RunFactory& make, uint32_t n, double rate, float 
 // any GPU setting. The state is in simulation space, whose origin follows the instance identically at every rate.
 inline std::vector<std::vector<Vec3>> trajectory(const tressvk::asset::HairAsset& a, const TvkSimParams& p,
                                                  double rate, const std::string& scene, uint32_t frames,
-                                                 double* median = nullptr) {
+                                                 double* median = nullptr,
+                                                 LengthModel model = LengthModel::kFollowTheLeader) {
   TvkSimSettings s = settings_at(rate);
   s.time.max_steps_per_frame = 1024;
   const tressvk::reference::PlannerLimits limits{7680.0, 1024};
   tressvk::reference::Simulator sim(a, std::span<const TvkSimParams>(&p, 1), s, limits);
+  sim.set_length_model(model);
   const auto geo = tressvk::reference::scene_geometry(sim.rest());
   std::vector<std::vector<Vec3>> out;
   for (uint32_t f = 0; f < frames; ++f) {

@@ -23,12 +23,12 @@ TEST_CASE("analytic: the chain's first mode matches the published discrete and c
 // projection's O(h) softening is what is left) and 3 % at the default 240 Hz, against the discrete chain of the same
 // N (the continuum value is within 0.8 % of it at N = 32 and 0.4 % at N = 64).
 // Known to fail on the follow-the-leader length pass (DFTL 0.9): -7.5 % (N 32, 240 Hz), -11 % (480 Hz), -18 % /
-// -29 % at N 64. [!shouldfail] until the length constraints are consistent.
-TEST_CASE("analytic: a hanging chain swings at its discrete period", "[reference][analytic][!shouldfail]") {
+// -29 % at N 64. [!shouldfail] while that is the default; the reference's Newmark length model passes it (below).
+static void check_chain_period(LengthModel model) {
   for (uint32_t n : {32u, 64u}) {
     const double expect = chain_first_mode(n, 0.3).period;
     for (double rate : {240.0, 480.0}) {
-      const SwingResult r = swing(reference_factory(), n, rate, 0.0f, 9.0);
+      const SwingResult r = swing(reference_factory(model), n, rate, 0.0f, 9.0);
       const double err = r.period / expect - 1.0;
       INFO("N " << n << " rate " << rate << " period " << r.period << " expected " << expect << " (continuum "
                 << continuum_chain_period(0.3) << ") error " << err);
@@ -36,24 +36,84 @@ TEST_CASE("analytic: a hanging chain swings at its discrete period", "[reference
     }
   }
 }
+TEST_CASE("analytic: a hanging chain swings at its discrete period", "[reference][analytic][!shouldfail]") {
+  check_chain_period(LengthModel::kFollowTheLeader);
+}
+// The Newmark length model (a tridiagonal Newton solve with the transverse response at the average-acceleration state):
+// measured +0.01 % at 240 Hz, +0.00 % at 480 Hz for N 32 and 64.
+TEST_CASE("analytic: a hanging chain swings at its discrete period (Newmark length model)", "[reference][analytic]") {
+  check_chain_period(LengthModel::kNewmark);
+}
 
 // A2. At zero damping the chain may lose at most 5 % of its amplitude per period (the scheme's numerical
 // dissipation); with damping d every step keeps exp(-60 d h) of the velocity, a viscous rate c = 60 d, so the
 // amplitude falls by exp(-c T / 2) = exp(-30 d T) per period; within 10 % of that factor's decrement.
 // Known to fail on the follow-the-leader length pass: at damping 0 the chain keeps 0.42 of its amplitude per period
-// at 240 Hz, 0.65 at 480 Hz. [!shouldfail] until the length constraints are consistent.
-TEST_CASE("analytic: damping alone sets the chain's decay", "[reference][analytic][!shouldfail]") {
+// at 240 Hz, 0.65 at 480 Hz. [!shouldfail] while that is the default; the Newmark length model passes it (below).
+static void check_chain_decay(LengthModel model) {
   for (double rate : {240.0, 480.0}) {
-    const SwingResult free = swing(reference_factory(), 32, rate, 0.0f, 9.0);
+    const SwingResult free = swing(reference_factory(model), 32, rate, 0.0f, 9.0);
     INFO("rate " << rate << " amplitude kept per period at damping 0: " << free.amplitude_ratio);
     CHECK(free.amplitude_ratio >= 0.95);
     CHECK(free.amplitude_ratio <= 1.0 + 1e-3);
     const float d = 0.01f;
-    const SwingResult damped = swing(reference_factory(), 32, rate, d, 9.0);
+    const SwingResult damped = swing(reference_factory(model), 32, rate, d, 9.0);
     const double expect = std::exp(-30.0 * d * damped.period);
     INFO("damping " << d << ": kept " << damped.amplitude_ratio << " per period, expected " << expect);
     CHECK(std::abs(std::log(damped.amplitude_ratio / free.amplitude_ratio) / std::log(expect) - 1.0) <= 0.1);
   }
+}
+TEST_CASE("analytic: damping alone sets the chain's decay", "[reference][analytic][!shouldfail]") {
+  check_chain_decay(LengthModel::kFollowTheLeader);
+}
+// Newmark length model: measured 1.0000 kept per period at damping 0 (240 and 480 Hz).
+TEST_CASE("analytic: damping alone sets the chain's decay (Newmark length model)", "[reference][analytic]") {
+  check_chain_decay(LengthModel::kNewmark);
+}
+
+// The Newmark length model is stable where an explicit transverse response is not (h sqrt(4 T / a) > 2: N 32 at 60
+// and 120 Hz, N 64 at 120 Hz, with 1 to 4 Newton steps): the period stays within 3 % and the amplitude within 5 % per
+// period at damping 0. Measured: within 0.05 %, >= 0.9986 kept. (N 64 at 60 Hz, h sqrt(4 T / a) about 12, is out of
+// this range: -2.1 % with 1 Newton step, noise with more; docs/accuracy.md.)
+TEST_CASE("analytic: the Newmark length model is stable at low step rates", "[reference][analytic]") {
+  struct Case {
+    uint32_t n;
+    double rate;
+  };
+  for (const Case c : {Case{32, 60.0}, Case{32, 120.0}, Case{64, 120.0}}) {
+    for (uint32_t li : {1u, 4u}) {
+      const SwingResult r = swing(reference_factory(LengthModel::kNewmark), c.n, c.rate, 0.0f, 9.0, 0.3, 0.003, li);
+      const double err = r.period / chain_first_mode(c.n, 0.3).period - 1.0;
+      INFO("N " << c.n << " rate " << c.rate << " Newton steps " << li << ": period error " << err << ", kept "
+                << r.amplitude_ratio);
+      CHECK(std::abs(err) <= 0.03);
+      CHECK(r.amplitude_ratio >= 0.95);
+      CHECK(r.amplitude_ratio <= 1.0 + 1e-3);
+    }
+  }
+}
+
+// p - q is the velocity: a chain settled from its mode with damping keeps no motion in its history. DFTL hands every
+// follow-the-leader move back to the parent as velocity, which leaves p - q nonzero in a chain at rest (0.3 m/s
+// reported); the Newmark model moves positions only. Largest |p - q| / h over the chain after 20 s at damping 0.5:
+// <= 1e-6 m/s (measured: see INFO).
+static double settled_speed(LengthModel model) {
+  TvkSimParams p = chain_params();
+  p.damping = 0.5f;
+  tressvk::reference::Simulator sim(strand_asset(chain_in_mode(32, 0.3, 0.003), 1), std::span<const TvkSimParams>(&p, 1),
+                                    settings_at(240.0));
+  sim.set_length_model(model);
+  for (uint32_t f = 0; f < 1200; ++f) sim.advance(still_frame());
+  double fastest = 0;
+  for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i)
+    fastest = std::max(fastest, length(sim.positions()[i] - sim.prev_positions()[i]) * 240.0);
+  return fastest;
+}
+TEST_CASE("analytic: p - q is the velocity of a settled chain (Newmark length model)", "[reference][analytic]") {
+  const double v = settled_speed(LengthModel::kNewmark);
+  INFO("largest |p - q| / h after 20 s: " << v << " m/s (follow-the-leader: "
+                                          << settled_speed(LengthModel::kFollowTheLeader) << " m/s)");
+  CHECK(v <= 1e-6);
 }
 
 // A3. The discrete catenary is an equilibrium of the chain pinned at both ends: after 10 s it has not moved by more
@@ -63,11 +123,11 @@ TEST_CASE("analytic: damping alone sets the chain's decay", "[reference][analyti
 struct CatenaryRun {
   double drift = 0, stretch = 0, sag = 0;
 };
-static CatenaryRun catenary_run(double rate) {
+static CatenaryRun catenary_run(double rate, LengthModel model = LengthModel::kFollowTheLeader) {
   const Catenary cat = discrete_catenary(32, 0.3, 0.25);
   TvkSimParams p = chain_params();
   p.damping = 0.08f;
-  auto run = reference_factory()(strand_asset(cat.pts, 1, true), p, settings_at(rate));
+  auto run = reference_factory(model)(strand_asset(cat.pts, 1, true), p, settings_at(rate));
   std::vector<Vec3> first, last;
   CatenaryRun r;
   for (uint32_t f = 0; f < 600; ++f) {
@@ -103,8 +163,11 @@ TEST_CASE("analytic: a strand pinned at both ends keeps its segment lengths", "[
 // solve of a tip-pinned strand reproduces (follow-the-leader's fixed point was 12 % short of it, drift 0.13 L).
 TEST_CASE("analytic: a strand pinned at both ends hangs as the catenary", "[reference][analytic]") {
   const Catenary cat = discrete_catenary(32, 0.3, 0.25);
+  for (const LengthModel model : {LengthModel::kFollowTheLeader, LengthModel::kNewmark})
   for (double rate : {240.0, 480.0}) {
-    const CatenaryRun r = catenary_run(rate);
+    const CatenaryRun r = catenary_run(rate, model);
+    INFO((model == LengthModel::kNewmark ? "Newmark" : "follow-the-leader") << " stretch " << r.stretch);
+    CHECK(r.stretch <= 0.01);
     INFO("rate " << rate << " drift " << r.drift / 0.3 << " L, sag " << r.sag << " (expected " << cat.sag << ")");
     CHECK(r.drift <= 1e-3 * 0.3);
     CHECK(std::abs(r.sag / cat.sag - 1.0) <= 0.01);
@@ -138,18 +201,53 @@ TEST_CASE("analytic: a free strand falls freely", "[reference][analytic]") {
 // move, not a physical rate: 0.049, 0.049, 0.045, 0.040 (rms / median length) for 240/480 ... 1920/3840 Hz; the same
 // in shake, run and wind and on the curly groom (docs/accuracy.md). [!shouldfail] until the length constraints are
 // consistent.
-TEST_CASE("analytic: the model converges as the step halves (the converged reference exists)",
-          "[reference][analytic][!shouldfail]") {
+static void check_convergence(LengthModel model) {
   TvkSimParams p = chain_params();
   p.damping = 0.08f;
   const auto a = tvk_test::groom("straight", 8);
   double median = 0;
   std::vector<std::vector<std::vector<Vec3>>> runs;
-  for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0}) runs.push_back(trajectory(a, p, rate, "settle", 30, &median));
+  for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0})
+    runs.push_back(trajectory(a, p, rate, "settle", 30, &median, model));
   std::vector<double> diffs;
   for (size_t k = 0; k + 1 < runs.size(); ++k) {
     diffs.push_back(tressvk::reference::trajectory_error(runs[k], runs[k + 1], median).rms_rel);
   }
   INFO("rms differences per halving: " << diffs[0] << ", " << diffs[1] << ", " << diffs[2] << ", " << diffs[3]);
   for (size_t k = 0; k + 1 < diffs.size(); ++k) CHECK(diffs[k + 1] * 1.5 <= diffs[k]);
+}
+TEST_CASE("analytic: the model converges as the step halves (the converged reference exists)",
+          "[reference][analytic][!shouldfail]") {
+  check_convergence(LengthModel::kFollowTheLeader);
+}
+// Not yet on the Newmark model either, for another reason: it removes the numerical damping, so the shape-free strands
+// whip (the tip of a free chain falling from the rest pose takes the motion up to the step rate) and the halving is
+// pre-asymptotic over these rates: 0.35, 0.35, 0.27, 0.16 (rms / median length). The test of convergence for the
+// default model needs the shape terms on a consistent footing first (item 2). [!shouldfail] with the numbers.
+TEST_CASE("analytic: the model converges as the step halves (Newmark length model)",
+          "[reference][analytic][!shouldfail]") {
+  check_convergence(LengthModel::kNewmark);
+}
+
+// What keeps the Newmark length model from being the default: the local-shape pass (a Gauss-Seidel projection with a
+// stiffness fraction per iteration, item 2 of issue 10) adds energy at few iterations, which DFTL's numerical damping
+// hid. The curly groom's rest pose without gravity at the defaults (2 local iterations) drifts from rounding level by
+// about x1.034 per step under the Newmark model (5e-9 of the median length after 2 s, 0.31 at 1 iteration; stable
+// at 4 iterations and with local shape off, and under follow-the-leader). [!shouldfail] until local shape is
+// energy-consistent (compliance-based).
+TEST_CASE("analytic: the curly rest pose is a fixed point under the Newmark length model", "[reference][analytic][!shouldfail]") {
+  auto a = tvk_test::groom("curly", 32, 1);
+  TvkSimSettings s = tvk_test::default_settings();
+  s.gravity[1] = 0.0f;
+  tressvk::reference::Simulator sim = tvk_test::make_sim(a, tvk_test::default_params(), s);
+  sim.set_length_model(LengthModel::kNewmark);
+  const auto geo = tressvk::reference::scene_geometry(sim.rest());
+  const auto first = sim.advance(tressvk::reference::scene_frame("settle", 0, geo));
+  std::vector<Vec3> r;
+  for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) r.push_back(sim.skinned_rest(first.steps[0], i));
+  for (uint32_t f = 1; f < 120; ++f) sim.advance(tressvk::reference::scene_frame("settle", f, geo));
+  double worst = 0;
+  for (size_t i = 0; i < r.size(); ++i) worst = std::max(worst, length(sim.positions()[i] - r[i]));
+  INFO("largest drift after 2 s: " << worst / sim.median_strand_length() << " of the median length");
+  CHECK(worst < 1e-12 * sim.median_strand_length());
 }

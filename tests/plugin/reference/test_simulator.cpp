@@ -5,6 +5,8 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <numeric>
 
 #include "helpers.hpp"
 
@@ -290,6 +292,33 @@ TEST_CASE("reference: VSP at coefficient 1 carries a strand rigidly with the hea
   CHECK(max_rel(guide_copy(sim), rest, sim.median_strand_length()) < 1e-9);
 }
 
+// The same with 1 and 3 root vertices pinned (the baker's --pin takes 0-128): VSP follows the root's rigid motion
+// from the first free vertex on and measures the root's acceleration at the last pinned root vertex (vertex 1 when
+// two or more are pinned, as before). It used to start at vertex 2 whatever the pin count, so with one pinned vertex
+// vertex 1 lagged the head (measured 2.9e-2 of the median length after 30 frames of `shake`).
+TEST_CASE("reference: VSP at coefficient 1 carries a strand rigidly with the head at any pin count", "[reference][sim]") {
+  for (uint32_t pin : {1u, 3u}) {
+    auto a = groom("straight", 16);
+    const uint32_t n = a.vertices_per_strand;
+    for (uint32_t g = 0; g < a.guide_count(); ++g)
+      for (uint32_t v = 0; v < n; ++v) a.rest_positions[size_t{g} * n + v][3] = v < pin ? 0.0f : 1.0f;
+    TvkSimSettings s = default_settings();
+    s.gravity[1] = 0.0f;
+    TvkSimParams p = default_params();
+    p.vsp_coefficient = 1.0f;
+    p.global_stiffness = 0.0f;
+    Simulator sim = make_sim(a, p, s);
+    SceneGeometry geo = scene_geometry(sim.rest());
+    FramePlan plan;
+    for (uint32_t f = 0; f < 30; ++f) plan = sim.advance(scene_frame("shake", f, geo));
+    std::vector<Vec3> rest;
+    for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) rest.push_back(sim.skinned_rest(plan.steps.back(), i));
+    const double err = max_rel(guide_copy(sim), rest, sim.median_strand_length());
+    INFO("pin " << pin << ": largest distance from the rigidly carried rest pose " << err);
+    CHECK(err < 1e-9);
+  }
+}
+
 TEST_CASE("reference: a hitch does not whip the hair (the dropped time is carried rigidly)", "[reference][sim]") {
   auto a = groom("long128", 32);
   Simulator sim = make_sim(a);
@@ -521,5 +550,63 @@ TEST_CASE("reference: hard settings stay stable in violent scenes", "[reference]
     // whips past that (measured at most 12.9 m/s, long128 in `run` with no damping, shape, VSP or limit); a solver
     // that gains energy runs far past 50 m/s within these 90 frames.
     CHECK(fastest < 50.0);
+  }
+}
+
+// Time warp: at a host rate that does not divide the step rate (144, 165 Hz at 240 Hz steps) the planner must sample
+// the host's poses at the steps' true times. A straight groom on a head that sways (0.1 m at 1.5 Hz) and turns
+// (0.5 rad at 1.2 Hz) for 1 s, against a 240 Hz host, which hands every step its exact pose. Bound: 2e-3 of the
+// median length (what remains is the host's linear interpolation between its frames, O(dt^2 x acceleration): a 60 Hz
+// host, which divides the step rate, measures 4.4e-4). Measured 5.5e-4 (144 Hz) and 4.3e-4 (165 Hz); spreading each
+// frame's motion evenly over its steps put it up to a step early or late: 0.175 and 0.189 before.
+TEST_CASE("reference: hosts at 144 and 165 Hz move the hair at the steps' true times", "[reference][sim]") {
+  auto a = groom("straight", 16);
+  struct Run {
+    std::vector<std::vector<Vec3>> x;  // positions after each frame
+    std::vector<uint64_t> steps;       // steps simulated so far, after each frame
+    double median = 0;
+  };
+  auto run = [&](uint32_t host_hz) {
+    Simulator sim = make_sim(a);
+    Run r;
+    r.median = sim.median_strand_length();
+    const float dt = 1.0f / static_cast<float>(host_hz);
+    uint64_t steps = 0;
+    for (uint32_t f = 0; f <= host_hz; ++f) {
+      const double t = static_cast<double>(f) * static_cast<double>(dt);
+      TvkSimFrame fr{};
+      fr.dt = f == 0 ? 0.0f : dt;
+      fr.transform = TVK_INSTANCE_TRANSFORM_DEFAULT_INIT;
+      fr.wind = TVK_WIND_DEFAULT_INIT;
+      fr.transform.translation[0] = static_cast<float>(0.1 * std::sin(2.0 * std::numbers::pi * 1.5 * t));
+      const double th = 0.5 * std::sin(2.0 * std::numbers::pi * 1.2 * t);
+      fr.transform.rotation[1] = static_cast<float>(std::sin(0.5 * th));
+      fr.transform.rotation[3] = static_cast<float>(std::cos(0.5 * th));
+      const FramePlan plan = sim.advance(fr);
+      for (const Substep& st : plan.steps) steps += st.reset ? 0u : 1u;
+      std::vector<Vec3> x;
+      const Vec3 o{plan.sim_origin[0], plan.sim_origin[1], plan.sim_origin[2]};
+      for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) x.push_back(sim.positions()[i] + o);
+      r.x.push_back(std::move(x));
+      r.steps.push_back(steps);
+    }
+    return r;
+  };
+  // A 240 Hz host runs one step per frame: after step S its state is frame S's. Each frame of another host is
+  // compared with the 240 Hz run after the same number of steps (the same simulated time, whatever the host's float
+  // dt rounding does to the phase of its steps).
+  const Run exact = run(240);
+  for (uint32_t host : {144u, 165u, 60u}) {
+    const Run got = run(host);
+    double worst = 0;
+    for (size_t f = 1; f < got.x.size(); ++f) {
+      const uint64_t s = got.steps[f];
+      if (s >= exact.x.size()) break;
+      REQUIRE(exact.steps[s] == s);
+      for (size_t i = 0; i < got.x[f].size(); ++i) worst = std::max(worst, length(got.x[f][i] - exact.x[s][i]));
+    }
+    INFO("host " << host << " Hz: largest distance from the 240 Hz host after the same steps " << worst / exact.median
+                 << " of the median length");
+    CHECK(worst <= 2e-3 * exact.median);
   }
 }

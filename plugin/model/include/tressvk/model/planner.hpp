@@ -118,6 +118,8 @@ class FramePlanner {
   Vec3 origin_;              // world position of the simulation origin of the state (double)
   Pose last_;                // instance pose at the last simulated step
   std::vector<Pose> last_bones_;
+  Pose host_last_;           // the host's instance pose at the previous frame (steps sample between it and now)
+  std::vector<Pose> host_last_bones_;
   std::vector<Quat> last_rot_;  // skin rotations of the last planned step
   std::vector<Quat> last_delta_;  // skin deltas of the last planned step
   std::vector<std::array<std::array<double, 4>, 3>> last_rows_;  // skin maps of the last planned step

@@ -32,6 +32,17 @@ class Simulator {
             const TvkSimSettings& settings, const PlannerLimits& limits = {});
 
   void set_params(std::span<const TvkSimParams> group_params);
+
+  // The length constraints' scheme. kFollowTheLeader (the default, what the GPU runs): follow-the-leader with the
+  // DFTL velocity correction (tip-pinned strands: a tridiagonal Newton solve). kNewmark (reference only, opt-in):
+  // every strand by a tridiagonal Newton solve with an implicit transverse response (the average-acceleration rule):
+  // a hanging chain's period within 0.05 % of the discrete value and <= 0.4 % amplitude loss per period at damping 0
+  // for N 16-64 at 60-480 Hz (N 64 at 60 Hz: -2.1 %, 5.9 %), where DFTL gives -7 to -29 % and 58 % loss. Not the
+  // default yet: local shape adds energy at few iterations, which DFTL's damping hid (the curly rest pose without
+  // gravity grows from rounding by about x1.034 per step at 2 local iterations, 0.31 L in 2 s at 1), and the GPU has
+  // no twin (docs/accuracy.md).
+  enum class LengthModel { kFollowTheLeader, kNewmark };
+  void set_length_model(LengthModel m) { length_model_ = m; }
   const std::vector<TvkSimParams>& params() const { return params_; }
   const ModelRest& rest() const { return rest_; }
   FramePlanner& planner() { return planner_; }
@@ -85,9 +96,15 @@ class Simulator {
   bool skinned_ = false;  // the current substep blends bones
   std::vector<Vec3> pos_, prev_, prevprev_, tangent_;
   uint64_t nonfinite_resets_ = 0;
-  // The length solve of strands pinned at both ends (solve_tip_pinned): per segment, c' and d' (then lambda).
-  void solve_tip_pinned(size_t strand_base);
+  // One Newton step of a strand's length constraints (solve_lengths, every strand): per segment, c' and d' (then
+  // lambda).
+  void solve_lengths(size_t strand_base);
+  // The implicit transverse correction after the Newton steps (see simulator.cpp).
+  void implicit_transverse(size_t strand_base, double alpha);
   std::vector<double> seg_cp_, seg_dp_;
+  LengthModel length_model_ = LengthModel::kFollowTheLeader;
+  std::vector<double> lam_;  // the Newton steps' multipliers summed, per segment
+  std::vector<Vec3> move_, tdp_;  // the Newton steps' move per vertex; the transverse solve's d' (then delta)
 };
 
 }  // namespace tressvk::reference
