@@ -210,7 +210,8 @@ TEST_CASE("docs/integration.md: the walk-through runs under synchronization vali
     });
     const char* names[16];
     const uint32_t passes = tressvk_get_recorded_passes(ctx, names, 16);
-    CHECK(passes >= 3);
+    // The fused frame kernel (the default) records one pass per frame; TRESSVK_SIM_PATH=passes one per pass.
+    CHECK(passes >= 1);
     bool collision = false;
     for (uint32_t i = 0; i < passes && i < 16; ++i)
       collision |= std::string(names[i]).find("+collision") != std::string::npos;

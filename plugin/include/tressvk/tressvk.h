@@ -269,8 +269,9 @@ typedef struct TvkSimulateInfo {
 TVK_API TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer command_buffer, const TvkSimulateInfo* info);
 
 /* The passes recorded by the last tressvk_cmd_simulate, in order, deduplicated across substeps and instances
- * (the base pass and the terms compiled in, e.g. "integrate+global", "vsp", "local_shape",
- * "length+wind+collision+clamp", "follow"). Returns how many there are; writes at
+ * (the base pass and the terms compiled in: by default one fused frame pass, e.g.
+ * "frame+vsp+local_shape+global+collision"; with TRESSVK_SIM_PATH=passes e.g. "integrate+global", "vsp",
+ * "local_shape", "length+wind+collision+clamp", "follow"). Returns how many there are; writes at
  * most `capacity` names (static strings). */
 TVK_API uint32_t tressvk_get_recorded_passes(TvkContext context, const char** names, uint32_t capacity);
 

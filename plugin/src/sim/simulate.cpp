@@ -152,6 +152,17 @@ struct InstanceWork {
   std::array<uint32_t, 3> dynamic_offsets{};
 };
 
+// The passes a frame of this instance records on the process's simulation path (TRESSVK_SIM_PATH): the fused frame
+// kernel (sim/fused.hpp; the shared-memory variant only where the strand block fits), or one pass per dispatch.
+std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
+  const sim::SimPath path = sim::sim_path_from_environment();
+  if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
+  const bool shared = path == sim::SimPath::kFusedShared &&
+                      sim::frame_shared_bytes(inst.asset->rest.vertices_per_strand, terms.vsp) <=
+                          ctx.device_properties.limits.maxComputeSharedMemorySize;
+  return {sim::frame_pass_use(terms, shared)};
+}
+
 // Plans the instance's frame and writes its parameters into this frame's ring slice.
 TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   work.inst = &inst;
@@ -182,16 +193,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   work.dynamic_offsets = {static_cast<uint32_t>(base), static_cast<uint32_t>(base), static_cast<uint32_t>(base)};
   const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide,
                                                  inst.asset->rest.pinned_tip_strands > 0);
-  const sim::SimPath path = sim::sim_path_from_environment();
-  if (path == sim::SimPath::kPasses) {
-    work.passes = sim::passes_for(terms);
-  } else {
-    // The fused frame kernel (sim/fused.hpp); the shared-memory variant only where the strand block fits.
-    const bool shared = path == sim::SimPath::kFusedShared &&
-                        sim::frame_shared_bytes(inst.asset->rest.vertices_per_strand, terms.vsp) <=
-                            ctx.device_properties.limits.maxComputeSharedMemorySize;
-    work.passes = {sim::frame_pass_use(terms, shared)};
-  }
+  work.passes = passes_for_path(ctx, inst, terms);
   return TVK_SUCCESS;
 }
 
@@ -202,7 +204,7 @@ TvkResult prewarm_sim_pipelines(Context& ctx, const TvkInstance_T& inst, const T
   const auto& rest = inst.asset->rest;
   const sim::SceneTerms terms =
       sim::scene_terms(inst.params, frame, rest.follow_per_guide, rest.pinned_tip_strands > 0);
-  for (const PassUse& use : sim::passes_for(terms)) {
+  for (const PassUse& use : passes_for_path(ctx, inst, terms)) {
     VkPipeline pipeline = VK_NULL_HANDLE;
     if (TvkResult r = get_pipeline(ctx, use, rest.vertices_per_strand, rest.follow_per_guide, pipeline);
         r != TVK_SUCCESS)
