@@ -42,17 +42,6 @@ TvkRendererCreateInfo renderer_info() {
   return ri;
 }
 
-TvkView small_view() {
-  TvkView view{};
-  const double vp[16] = {2, 0, 0, 0, 0, -2, 0, 0, 0, 0, -0.5, 0, 0, 0, 0.5, 1};
-  std::copy(std::begin(vp), std::end(vp), view.view_projection);
-  view.eye[2] = 1.0;
-  view.orthographic = 1;
-  view.direction[2] = -1.0f;
-  view.width = view.height = 32;
-  return view;
-}
-
 // Simulates `frames` frames of a fresh context on the fixture's device and returns the positions read back.
 std::vector<test::Point> simulate_fresh(const asset::HairAsset& groom, int frames) {
   auto& dev = test::device();
@@ -136,7 +125,7 @@ TEST_CASE("a device lost in the host's submit: every device call refuses, teardo
   CHECK(tressvk_create_renderer(ctx, &ri, &second_renderer) == TVK_ERROR_DEVICE_LOST);
   CHECK(second_renderer == nullptr);
   {
-    const TvkView view = small_view();
+    const TvkView view = test::small_ortho_view();
     TvkDrawInfo di{};
     di.struct_size = sizeof(di);
     di.instance = instance;
@@ -245,7 +234,7 @@ TEST_CASE("drawing an instance that was never simulated is refused with a messag
     const TvkRendererCreateInfo ri = renderer_info();
     TvkRenderer renderer = nullptr;
     REQUIRE(tressvk_create_renderer(ctx, &ri, &renderer) == TVK_SUCCESS);
-    const TvkView view = small_view();
+    const TvkView view = test::small_ortho_view();
     TvkDrawInfo di{};
     di.struct_size = sizeof(di);
     di.instance = inst.handle();

@@ -120,13 +120,7 @@ void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& tar
     return tressvk_create_renderer(w.ctx, &ri, &w.renderer);
   });
   w.step("tressvk_cmd_draw_hair", [&] {
-    TvkView view{};
-    const double vp[16] = {2, 0, 0, 0, 0, -2, 0, 0, 0, 0, -0.5, 0, 0, 0, 0.5, 1};
-    std::copy(std::begin(vp), std::end(vp), view.view_projection);
-    view.eye[2] = 1.0;
-    view.orthographic = 1;
-    view.direction[2] = -1.0f;
-    view.width = view.height = 32;
+    const TvkView view = test::small_ortho_view();
     TvkResult r = TVK_SUCCESS;
     test::run_commands([&](VkCommandBuffer cmd) {
       engine::cmd_begin_rendering(cmd, target, {});

@@ -75,13 +75,7 @@ Counts first_frame(bool prewarm, const engine::OffscreenTarget& target) {
   out.simulate = control.calls;
 
   control.arm(0);
-  TvkView view{};
-  const double vp[16] = {2, 0, 0, 0, 0, -2, 0, 0, 0, 0, -0.5, 0, 0, 0, 0.5, 1};
-  std::copy(std::begin(vp), std::end(vp), view.view_projection);
-  view.eye[2] = 1.0;
-  view.orthographic = 1;
-  view.direction[2] = -1.0f;
-  view.width = view.height = 32;
+  const TvkView view = test::small_ortho_view();
   test::run_commands([&](VkCommandBuffer cmd) {
     engine::cmd_begin_rendering(cmd, target, {});
     TvkDrawInfo di{};

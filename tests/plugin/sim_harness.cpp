@@ -6,7 +6,9 @@
 
 #include <catch2/catch_test_macros.hpp>
 
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 
 namespace tressvk::test {
 
@@ -105,6 +107,17 @@ void GpuInstance::poke_position(size_t vertex, const sim::Vec4& value) {
     dep.pMemoryBarriers = &after;
     vkCmdPipelineBarrier2(cmd, &dep);
   });
+}
+
+TvkView small_ortho_view() {
+  TvkView view{};
+  const double vp[16] = {2, 0, 0, 0, 0, -2, 0, 0, 0, 0, -0.5, 0, 0, 0, 0.5, 1};
+  std::copy(std::begin(vp), std::end(vp), view.view_projection);
+  view.eye[2] = 1.0;
+  view.orthographic = 1;
+  view.direction[2] = -1.0f;
+  view.width = view.height = 32;
+  return view;
 }
 
 asset::HairAsset small_groom(const std::string& name, uint32_t guides, uint32_t follows) {

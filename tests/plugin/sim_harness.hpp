@@ -59,4 +59,7 @@ void run_frame_batched(TvkContext ctx, const std::vector<GpuInstance*>& instance
 // A small built-in groom for lavapipe-sized tests.
 asset::HairAsset small_groom(const std::string& name, uint32_t guides, uint32_t follows = 0);
 
+// A 32x32 orthographic view looking down -z at the origin (the draw calls' smallest valid view).
+TvkView small_ortho_view();
+
 }  // namespace tressvk::test
