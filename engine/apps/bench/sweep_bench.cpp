@@ -120,7 +120,9 @@ void add_sweep_command(CLI::App& app, SweepCommand& cmd) {
   s->add_option("--timed-frames", cmd.timed_frames, "timed frames per configuration")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  s->add_option("--warmup", cmd.warmup, "frames run before timing")->capture_default_str();
+  s->add_option("--warmup", cmd.warmup, "frames run before timing each configuration")->capture_default_str();
+  s->add_option("--warmup-ms", cmd.warmup_ms, "milliseconds of GPU work before the first timed configuration")
+      ->capture_default_str();
   s->add_option("--in-flight", cmd.frames_in_flight, "frames in flight while timing")->capture_default_str()->check(CLI::Range(1, 8));
   s->add_option("--reference-rate", cmd.reference_rate, "step rate of the converged reference, Hz")
       ->capture_default_str()
@@ -241,64 +243,49 @@ int execute_sweep_command(const SweepCommand& given) {
     engine::Device dev(host::tool_device_options("tressvk-bench", cmd.device, cmd.validation, cmd.validation));
     device_name = dev.description();
     TvkContext ctx = host::create_context(dev, cmd.frames_in_flight, /*timestamps=*/true);
-    uint32_t built_n = 0;
-    asset::HairAsset groom, tracked;
-    model::ModelRest tracked_rest;
-    std::vector<std::byte> bytes;
-    TvkAsset timed_asset = nullptr;
-    for (const Config& c : configs) {
-      if (c.n != built_n) {
-        if (timed_asset) {
-          dev.wait_idle();
-          tressvk_destroy_asset(timed_asset);
-        }
-        groom = make(c.n);
-        tracked = reference::guide_prefix(groom, error_guides);
-        tracked_rest = model::build_model_rest(tracked);
-        bytes = asset::write(groom);
-        timed_asset = host::load_asset(dev, ctx, bytes);
-        built_n = c.n;
+    // The timed grooms, one per vertex count, loaded once.
+    std::map<uint32_t, asset::HairAsset> grooms;
+    std::map<uint32_t, TvkAsset> timed_assets;
+    for (const Config& c : configs)
+      if (!grooms.count(c.n)) {
+        grooms[c.n] = make(c.n);
+        timed_assets[c.n] = host::load_asset(dev, ctx, asset::write(grooms[c.n]));
       }
-      TvkSimParams p = cmd.params;
+    const auto with_config = [&](const Config& c, TvkSimParams& p, TvkSimSettings& s) {
+      p = cmd.params;
       p.local_iterations = c.local;
       p.length_iterations = c.length;
-      TvkSimSettings s = cmd.settings;
+      s = cmd.settings;
       s.time.step_rate = static_cast<float>(c.rate);
-      const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), p);
+    };
+    // 1. Accuracy: the tracked guides frame by frame, read back after each frame.
+    for (const Config& c : configs) {
+      const asset::HairAsset tracked = reference::guide_prefix(grooms[c.n], error_guides);
+      const model::ModelRest tracked_rest = model::build_model_rest(tracked);
+      TvkSimParams p;
+      TvkSimSettings s;
+      with_config(c, p, s);
+      const std::vector<TvkSimParams> params(std::max<size_t>(1, tracked.groups.size()), p);
       for (const std::string& scene : cmd.scenes) {
-        const auto frame_of = [&](uint32_t f) { return reference::scene_frame(scene, f, geometry); };
-        // Accuracy: the tracked guides frame by frame, read back after each frame.
         TrackOptions to;
         to.frames = cmd.frames;
-        to.frame_of = frame_of;
+        to.frame_of = [&](uint32_t f) { return reference::scene_frame(scene, f, geometry); };
         to.keep_guides = error_guides;
         const TrackResult tr = track(dev, ctx, tracked, params, s, to);
-        const reference::Trajectory& ref = converged[scene];
         reference::Trajectory matched;
-        for (const auto& frame : ref) matched.push_back(reference::at_arc_fractions(frame, ref_rest, tracked_rest));
+        for (const auto& frame : converged[scene])
+          matched.push_back(reference::at_arc_fractions(frame, ref_rest, tracked_rest));
         const reference::ErrorStats model_error = reference::trajectory_error(tr.trajectory, matched, median);
-        // Speed: the whole groom, frames in flight, no readback between timed frames.
-        TvkInstance inst = host::create_instance(ctx, timed_asset, s, p);
-        reference::FramePlanner planner(s, groom.origin, 0);
-        const FrameTimes t = time_frames(dev, ctx, inst, planner, frame_of, cmd.warmup, cmd.timed_frames,
-                                         cmd.frames_in_flight);
-        dev.wait_idle();
-        tressvk_destroy_instance(inst);
-        const bool is_default = c == def;
-        nlohmann::json row = {
+        rows.push_back({
             {"groom", cmd.builtin},
             {"scene", scene},
             {"step_rate_hz", c.rate},
             {"local_iterations", c.local},
             {"length_iterations", c.length},
             {"vertices_per_strand", c.n},
-            {"guides", groom.guide_count()},
+            {"guides", grooms[c.n].guide_count()},
             {"error_guides", error_guides},
-            {"is_default", is_default ? 1 : 0},
-            {"gpu_ms_per_frame", percentile(t.frame_ms, 0.5)},
-            {"gpu_ms_per_frame_p99", percentile(t.frame_ms, 0.99)},
-            {"steps_per_frame", t.steps_per_frame},
-            {"dispatches_per_frame", t.dispatches},
+            {"is_default", c == def ? 1 : 0},
             {"model_error_rms", model_error.rms_rel},
             {"model_error_max", model_error.max_rel},
             {"step_error_max", tr.step_error_max_rel},
@@ -309,17 +296,48 @@ int execute_sweep_command(const SweepCommand& given) {
             {"nan_strands", tr.nan_strands},
             {"exploded_strands", tr.exploded_strands},
             {"nonfinite_resets", tr.nonfinite_resets},
-        };
+        });
+      }
+    }
+    // 2. Speed: every configuration back to back after the GPU has worked for --warmup-ms (it reaches its working
+    // clock; timed right after the CPU-bound accuracy runs, it read up to 5x slow), the whole groom, frames in flight,
+    // no readback between timed frames.
+    size_t row = 0;
+    bool warmed = cmd.warmup_ms <= 0;
+    for (const Config& c : configs) {
+      TvkSimParams p;
+      TvkSimSettings s;
+      with_config(c, p, s);
+      for (const std::string& scene : cmd.scenes) {
+        TvkInstance inst = host::create_instance(ctx, timed_assets[c.n], s, p);
+        reference::FramePlanner planner(s, grooms[c.n].origin, 0);
+        uint32_t offset = 0;
+        const auto frame_of = [&](uint32_t f) { return reference::scene_frame(scene, offset + f, geometry); };
+        const auto t_warm = std::chrono::steady_clock::now();
+        while (!warmed) {
+          time_frames(dev, ctx, inst, planner, frame_of, 0, 60, cmd.frames_in_flight);
+          offset += 60;
+          warmed = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_warm).count() >=
+                   cmd.warmup_ms;
+        }
+        const FrameTimes t = time_frames(dev, ctx, inst, planner, frame_of, cmd.warmup, cmd.timed_frames,
+                                         cmd.frames_in_flight);
+        dev.wait_idle();
+        tressvk_destroy_instance(inst);
+        nlohmann::json& r = rows[row++];
+        r["gpu_ms_per_frame"] = percentile(t.frame_ms, 0.5);
+        r["gpu_ms_per_frame_p99"] = percentile(t.frame_ms, 0.99);
+        r["steps_per_frame"] = t.steps_per_frame;
+        r["dispatches_per_frame"] = t.dispatches;
         std::printf("%-7s %3.0f Hz  local %u  length %u  N %3u%s  %.4f ms  model rms %.3g max %.3g  step %.2g  stretch %.2g\n",
-                    scene.c_str(), c.rate, c.local, c.length, c.n, is_default ? "*" : " ",
-                    row["gpu_ms_per_frame"].get<double>(), model_error.rms_rel, model_error.max_rel,
-                    tr.step_error_max_rel, tr.stretch_max);
+                    scene.c_str(), c.rate, c.local, c.length, c.n, c == def ? "*" : " ", r["gpu_ms_per_frame"].get<double>(),
+                    r["model_error_rms"].get<double>(), r["model_error_max"].get<double>(),
+                    r["step_error_max"].get<double>(), r["stretch_max"].get<double>());
         std::fflush(stdout);
-        rows.push_back(std::move(row));
       }
     }
     dev.wait_idle();
-    if (timed_asset) tressvk_destroy_asset(timed_asset);
+    for (auto& [n, a] : timed_assets) tressvk_destroy_asset(a);
     tressvk_destroy_context(ctx);
     if (cmd.validation && dev.messages().count() > 0) {
       std::fprintf(stderr, "%s: %llu validation messages: nothing written\n", me,
@@ -339,6 +357,7 @@ int execute_sweep_command(const SweepCommand& given) {
       {"frames", cmd.frames},
       {"timed_frames", cmd.timed_frames},
       {"frames_in_flight", cmd.frames_in_flight},
+      {"warmup_ms", cmd.warmup_ms},
       {"median_strand_length_m", median},
       {"default", {{"step_rate_hz", def.rate}, {"local_iterations", def.local}, {"length_iterations", def.length},
                    {"vertices_per_strand", def.n}}},

@@ -28,6 +28,7 @@ struct SweepCommand {
   uint32_t error_guides = 8;    // its first guides (an even thinning), tracked for the model error
   uint32_t frames = 120;        // scene frames whose trajectory is compared
   uint32_t timed_frames = 120, warmup = 30, frames_in_flight = 3;
+  double warmup_ms = 1000;      // GPU work before the first timed configuration (its clock ramps up)
   double reference_rate = 3840;
   uint32_t reference_local_iterations = 8, reference_length_iterations = 4, reference_vertices = 128;
   uint32_t threads = 0;         // reference threads (0: one per scene, at most the hardware's)
