@@ -3,6 +3,8 @@
 //
 //   tressvk-bench compare --builtin curly --scene shake --frames 300 --json out.json
 //   tressvk-bench compare --asset mohawk.tvkhair --scene run
+//   tressvk-bench sweep --builtin curly --guides 2048 --around-default --csv sweep.csv --json sweep.json
+//   tressvk-bench hardcases --validation --json hardcases.json
 #include "bench.hpp"
 #include "params.hpp"
 #include "perf_bench.hpp"
