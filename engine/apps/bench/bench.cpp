@@ -6,6 +6,7 @@
 #include <tressvk/host/plugin_host.hpp>
 #include <tressvk/asset_io.hpp>
 #include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/penetration.hpp>
 #include <tressvk/reference/scenes.hpp>
 #include <tressvk/reference/simulator.hpp>
 
@@ -65,6 +66,8 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   double traj_sum_sq = 0, stretch_mean_sum = 0;
   uint64_t traj_count = 0, steps_total = 0;
   host::HairState state;  // GPU state after the previous frame, when it was read back
+  reference::PenetrationTracker penetration;
+  uint32_t penetration_frame = ~0u;  // the frame last given to it
   bool state_is_previous = false;
   const uint32_t total = opt.warmup + opt.frames;
   const uint32_t every = std::max(1u, opt.step_error_every);
@@ -126,6 +129,9 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
     const auto st = reference::stretch(std::span<const std::array<double, 3>>(state.positions), step_ref.rest());
     stretch_mean_sum += st.mean;
     out.stretch_max = std::max(out.stretch_max, st.max);
+    penetration.add(std::span<const std::array<double, 3>>(state.positions), plan, frame.dt, step_ref.rest(),
+                    penetration_frame + 1 == f);
+    penetration_frame = f;
     const auto h = reference::health(std::span<const std::array<double, 3>>(state.positions), step_ref.rest());
     out.nan_strands = std::max(out.nan_strands, h.nan_strands);
     out.exploded_strands = std::max(out.exploded_strands, h.exploded_strands);
@@ -153,6 +159,8 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   TvkInstanceStats stats{};
   tressvk_get_instance_stats(inst, &stats);
   out.nonfinite_resets = stats.nonfinite_strand_resets;
+  out.penetration_depth_rel = penetration.stats().depth_rel;
+  out.post_contact_speed_mps = penetration.stats().post_contact_speed;
   out.gpu_ms_per_frame = median(gpu_ms);
   out.gpu_ms_p99 = percentile(gpu_ms, 0.99);
   out.cpu_reference_ms_per_frame = median(cpu_ms);

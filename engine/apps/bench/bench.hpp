@@ -47,6 +47,9 @@ struct CompareResult {
   double trajectory_error_max_rel = 0;
   double stretch_mean = 0, stretch_max = 0;
   uint32_t nan_strands = 0, exploded_strands = 0, nonfinite_resets = 0;
+  // Penetration (reference/penetration.hpp), over the measured frames: deepest free vertex inside a capsule / its
+  // radius, fastest vertex relative to the surface in the frame after a contact (m/s).
+  double penetration_depth_rel = 0, post_contact_speed_mps = 0;
   std::vector<std::string> passes;
   std::vector<PassTime> pass_times;
 };

@@ -3,12 +3,16 @@
 //
 //   tressvk-bench compare --builtin curly --scene shake --frames 300 --json out.json
 //   tressvk-bench compare --asset mohawk.tvkhair --scene run
+//   tressvk-bench sweep --builtin curly --guides 2048 --around-default --csv sweep.csv --json sweep.json
+//   tressvk-bench hardcases --validation --json hardcases.json
 #include "bench.hpp"
 #include "params.hpp"
 #include "perf_bench.hpp"
 #include "render_bench.hpp"
 #include "run_bench.hpp"
 #include "soak_bench.hpp"
+#include "sweep_bench.hpp"
+#include "hardcases_bench.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
@@ -63,6 +67,8 @@ nlohmann::json to_json(const bench::CompareResult& r, const bench::CompareOption
       {"nan_strands", r.nan_strands},
       {"exploded_strands", r.exploded_strands},
       {"nonfinite_resets", r.nonfinite_resets},
+      {"penetration_depth_rel", r.penetration_depth_rel},
+      {"post_contact_speed_mps", r.post_contact_speed_mps},
       {"passes", r.passes},
       {"pass_times", passes},
   };
@@ -90,6 +96,8 @@ void print_table(const bench::CompareResult& r) {
   std::printf("\n");
   std::printf("health      stretch mean %.3g max %.3g; NaN strands %u, exploded %u, non-finite resets %u\n",
               r.stretch_mean, r.stretch_max, r.nan_strands, r.exploded_strands, r.nonfinite_resets);
+  std::printf("contact     deepest free vertex %.3g of the capsule radius inside; fastest after a contact %.3g m/s\n",
+              r.penetration_depth_rel, r.post_contact_speed_mps);
   std::printf("%-32s %12s %10s\n", "pass", "median ms", "dispatches");
   for (const auto& p : r.pass_times) std::printf("%-32s %12.4f %10u\n", p.name.c_str(), p.median_ms, p.dispatches);
 }
@@ -138,8 +146,14 @@ int main(int argc, char** argv) {
   CLI::App* soak = bench::add_soak_subcommand(app);
   bench::PerfCommand perf_command;
   bench::add_perf_command(app, perf_command);
+  bench::SweepCommand sweep_command;
+  bench::add_sweep_command(app, sweep_command);
+  bench::HardCasesCommand hardcases_command;
+  bench::add_hardcases_command(app, hardcases_command);
   CLI11_PARSE(app, argc, argv);
   if (perf_command.app->parsed()) return bench::execute_perf_command(perf_command);
+  if (sweep_command.app->parsed()) return bench::execute_sweep_command(sweep_command);
+  if (hardcases_command.app->parsed()) return bench::execute_hardcases_command(hardcases_command);
   if (render->parsed()) return bench::run_render_bench(render_options);
   if (run_command.app->parsed()) return bench::execute_run_command(run_command);
   if (soak->parsed()) {

@@ -1,5 +1,6 @@
 #include "perf_bench.hpp"
 
+#include "frame_timing.hpp"
 #include "params.hpp"
 
 #include <tressvk/asset_io.hpp>
@@ -26,12 +27,6 @@
 
 namespace tressvk::bench {
 namespace {
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
-}
 
 // The bytes a frame must move at the least: the state (positions and the previous positions) read once and written
 // once, prevprev written when VSP runs, tangents written once, the static rest data each pass reads (rest positions
@@ -180,52 +175,15 @@ int execute_perf_command(const PerfCommand& given) {
     const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
     const double median_length = ref.median_strand_length();
 
-    std::vector<double> frame_ms, sim_ms;
-    uint32_t dispatches = 0;
-    uint64_t steps_total = 0, frames_total = 0;
     const uint32_t total = cmd.warmup + cmd.frames;
-    engine::FrameLoop loop(dev, cmd.frames_in_flight, 2, [&](const engine::FrameLoop::Frame& fr) {
-      if (fr.number < cmd.warmup || fr.number >= total) return;
-      if (auto ms = fr.timestamps->elapsed_ms(0, 1)) frame_ms.push_back(*ms);
-    });
-    const auto record = [&](uint32_t f) {
-      const TvkSimFrame frame = reference::scene_frame(cmd.scene, f, geometry);
-      steps_total += ref.planner().plan(frame).steps.size();
-      ++frames_total;
-      host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
-      host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
-      const engine::FrameLoop::Frame& fr = loop.begin();
-      // The frame that last used this slot is complete now: its per-pass timings name the dispatches of a frame.
-      TvkPassTiming timings[32];
-      const uint32_t n = tressvk_get_pass_timings(ctx, timings, 32);
-      if (n) {
-        uint32_t d = 0, m = 0;
-        double ms = 0;
-        for (uint32_t i = 0; i < n && i < 32; ++i) {
-          d += timings[i].dispatches;
-          ms += timings[i].milliseconds;
-          ++m;
-        }
-        dispatches = std::max(dispatches, d);
-        if (f > cmd.warmup + cmd.frames_in_flight && f <= total) sim_ms.push_back(ms);
-      }
-      fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &inst;
-      host::check_tvk(tressvk_cmd_simulate(ctx, fr.cmd, &si), ctx, "tressvk_cmd_simulate");
-      fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      loop.end();
-    };
-    std::chrono::steady_clock::time_point t0;
-    for (uint32_t f = 0; f < total; ++f) {
-      if (f == cmd.warmup) t0 = std::chrono::steady_clock::now();
-      record(f);
-    }
-    loop.finish();
-    const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    const double steps_per_frame = double(steps_total) / double(frames_total);
+    const FrameTimes times = time_frames(
+        dev, ctx, inst, ref.planner(), [&](uint32_t f) { return reference::scene_frame(cmd.scene, f, geometry); },
+        cmd.warmup, cmd.frames, cmd.frames_in_flight);
+    const std::vector<double>& frame_ms = times.frame_ms;
+    const std::vector<double>& sim_ms = times.sim_ms;
+    const uint32_t dispatches = times.dispatches;
+    const double wall_ms = times.wall_ms;
+    const double steps_per_frame = times.steps_per_frame;
 
     // The copy right after the timed frames, while the GPU is still at its working clock (timed after the step-error
     // frames, where the GPU idles while the CPU reference runs, it reads up to 2x slow).
@@ -250,14 +208,13 @@ int execute_perf_command(const PerfCommand& given) {
       ref.advance(frame);
       host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
       host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
-      const engine::FrameLoop::Frame& fr = loop.begin();
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &inst;
-      host::check_tvk(tressvk_cmd_simulate(ctx, fr.cmd, &si), ctx, "tressvk_cmd_simulate");
-      loop.end();
-      loop.finish();
+      dev.run_commands([&](VkCommandBuffer c) {
+        TvkSimulateInfo si{};
+        si.struct_size = sizeof(si);
+        si.instance_count = 1;
+        si.instances = &inst;
+        host::check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
+      });
       const host::HairState after = host::read_hair_state(dev, inst);
       const auto err = reference::position_error(std::span<const std::array<double, 3>>(after.positions),
                                                  ref.positions(), median_length);

@@ -18,6 +18,7 @@
 #include <tressvk/asset.hpp>
 #include <tressvk/baker/bake.hpp>
 #include <tressvk/model/math.hpp>
+#include <tressvk/reference/converged.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>
 #include <tressvk/reference/simulator.hpp>
@@ -354,25 +355,18 @@ inline SwingResult swing(const RunFactory& make, uint32_t n, double rate, float 
 
 // ---- The converged reference ----------------------------------------------------------------------------------------
 // The guides' positions after each frame of `scene` at step rate `rate`, on the double reference with the planner's
-// limits raised (rates up to 7680 Hz, any number of steps per frame), so the same model can be stepped far finer than
-// any GPU setting. The state is in simulation space, whose origin follows the instance identically at every rate.
+// limits raised (tressvk/reference/converged.hpp, shared with `tressvk-bench sweep`), so the same model can be stepped
+// far finer than any GPU setting.
 inline std::vector<std::vector<Vec3>> trajectory(const tressvk::asset::HairAsset& a, const TvkSimParams& p,
                                                  double rate, const std::string& scene, uint32_t frames,
                                                  double* median = nullptr,
                                                  LengthModel model = LengthModel::kFollowTheLeader) {
-  TvkSimSettings s = settings_at(rate);
-  s.time.max_steps_per_frame = 1024;
-  const tressvk::reference::PlannerLimits limits{7680.0, 1024};
-  tressvk::reference::Simulator sim(a, std::span<const TvkSimParams>(&p, 1), s, limits);
-  sim.set_length_model(model);
-  const auto geo = tressvk::reference::scene_geometry(sim.rest());
-  std::vector<std::vector<Vec3>> out;
-  for (uint32_t f = 0; f < frames; ++f) {
-    sim.advance(tressvk::reference::scene_frame(scene, f, geo));
-    out.emplace_back(sim.positions().begin(), sim.positions().begin() + static_cast<std::ptrdiff_t>(sim.rest().rest_pos.size()));
-  }
-  if (median) *median = sim.median_strand_length();
-  return out;
+  tressvk::reference::TrajectoryOptions o;
+  o.step_rate = rate;
+  o.scene = scene;
+  o.frames = frames;
+  o.configure = [model](tressvk::reference::Simulator& sim) { sim.set_length_model(model); };
+  return tressvk::reference::reference_trajectory(a, std::span<const TvkSimParams>(&p, 1), o, median);
 }
 
 }  // namespace tvk_analytic

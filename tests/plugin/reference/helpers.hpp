@@ -7,6 +7,7 @@
 #include <tressvk/asset.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/scaling.hpp>
 #include <tressvk/reference/scenes.hpp>
 #include <tressvk/reference/simulator.hpp>
 
@@ -43,25 +44,9 @@ inline double max_rel(std::span<const Vec3> a, std::span<const Vec3> b, double m
   return position_error(a, b, median).max_rel;
 }
 
-// The same groom `s` times larger: every length in the asset scaled (positions, origin, rest lengths, rest edges,
-// follow offsets); directions, frames and pinning unchanged.
-inline tressvk::asset::HairAsset scaled_groom(tressvk::asset::HairAsset a, double s) {
-  for (double& o : a.origin) o *= s;
-  for (auto& p : a.rest_positions)
-    for (size_t k = 0; k < 3; ++k) p[k] = static_cast<float>(static_cast<double>(p[k]) * s);
-  for (float& l : a.rest_lengths) l = static_cast<float>(static_cast<double>(l) * s);
-  for (auto& e : a.rest_edge_local)
-    for (size_t k = 0; k < 3; ++k) e[k] = static_cast<float>(static_cast<double>(e[k]) * s);
-  for (auto& f : a.follow_offsets)
-    for (size_t k = 0; k < 3; ++k) f[k] = static_cast<float>(static_cast<double>(f[k]) * s);
-  return a;
-}
-
-// What a scene becomes at `s` times the size: every parameter that is a length or a speed scaled with it.
-inline void scale_inputs(double s, TvkSimParams& p, TvkSimSettings& settings) {
-  p.max_speed = static_cast<float>(p.max_speed * s);
-  p.vsp_threshold = static_cast<float>(p.vsp_threshold * s);
-  for (float& g : settings.gravity) g = static_cast<float>(g * s);
-}
+// The same groom `s` times larger, and the scene's inputs with it (tressvk/reference/scaling.hpp, shared with the
+// hard-case suite of tressvk-bench).
+using tressvk::reference::scale_inputs;
+using tressvk::reference::scaled_groom;
 
 }  // namespace tvk_test

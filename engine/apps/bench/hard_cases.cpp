@@ -1,0 +1,265 @@
+#include "hard_cases.hpp"
+
+#include <tressvk/baker/bake.hpp>
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/model/math.hpp>
+#include <tressvk/reference/scaling.hpp>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace tressvk::bench {
+namespace {
+
+using model::Quat;
+using model::Vec3;
+
+asset::HairAsset builtin(const char* name, uint32_t guides, uint32_t n = 0) {
+  baker::BuiltinGroomOptions o;
+  o.guide_count = guides;
+  o.vertices_per_strand = n;
+  return baker::make_builtin_groom(name, o);
+}
+
+std::function<TvkSimFrame(uint32_t, const reference::SceneGeometry&)> scene(std::string name) {
+  return [name](uint32_t f, const reference::SceneGeometry& g) { return reference::scene_frame(name, f, g); };
+}
+
+// Tight curls: helices of radius 4 mm and pitch 8 mm, 6 cm tall (about 0.19 m of hair, 7.5 turns), at 64 vertices
+// (8.5 per turn), rooted on the upper half of a 0.1 m head like the built-in grooms.
+asset::HairAsset tight_curls(uint32_t guides) {
+  baker::RawGroom raw;
+  raw.group_names = {"tight"};
+  const double pi = std::numbers::pi, radius = 0.004, pitch = 0.008, height = 0.06;
+  for (uint32_t i = 0; i < guides; ++i) {
+    const double y = 1.0 - (i + 0.5) / guides;
+    const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
+    const double phi = 2.399963229728653 * i;
+    const Vec3 n{r * std::cos(phi), y, r * std::sin(phi)};
+    const Vec3 a = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 0, 1};
+    const Vec3 u = model::normalize(model::cross(n, a)), w = model::cross(n, u);
+    const Vec3 root = 0.1 * n, centre = root - radius * u;
+    std::vector<baker::Vec3> poly;
+    const int points = static_cast<int>(height / pitch * 48);
+    for (int k = 0; k <= points; ++k) {
+      const double t = 2.0 * pi * k / 48.0;
+      const Vec3 p = centre + (pitch * t / (2.0 * pi)) * n + radius * (std::cos(t) * u + std::sin(t) * w);
+      poly.push_back({p.x, p.y, p.z});
+    }
+    raw.add_strand(poly.data(), poly.size(), 0);
+  }
+  raw.input_vertices = raw.points.size();
+  baker::BakeOptions o;
+  o.vertices_per_strand = 64;
+  return baker::bake(raw, o);
+}
+
+Vec3 rotate_inverse(const std::array<float, 4>& q, Vec3 v) {
+  const Quat c = model::conjugate(Quat{q[0], q[1], q[2], q[3]});
+  return model::quat_mul(model::quat_mul(c, model::make_quat(v, 0.0)), model::conjugate(c)).v();
+}
+
+// Straight strands with near-duplicate vertices: in guide 0 vertex 5 moved to 0.2 um after vertex 4, in guide 1 the
+// tip to 0.2 um after vertex N-2, in guide 2 vertices 8..10 within 0.4 um of vertex 7 (a duplicate cluster). A valid
+// asset has no exactly zero segment (the baker merges repeated vertices and drops zero-length strands, and the asset
+// validator refuses a zero rest length), so these are the shortest segments the model can be given: about 30 float
+// ulps at 0.1 m from the origin.
+asset::HairAsset near_duplicates() {
+  asset::HairAsset a = builtin("straight", 8);
+  const uint32_t n = a.vertices_per_strand;
+  const auto pos = [&](size_t i) { const auto& p = a.rest_positions[i]; return Vec3{p[0], p[1], p[2]}; };
+  const auto place = [&](size_t g, uint32_t v, uint32_t after, double distance) {
+    const size_t b = g * n;
+    const Vec3 dir = model::normalize(pos(b + n - 1) - pos(b));
+    const Vec3 p = pos(b + after) + distance * dir;
+    for (int k = 0; k < 3; ++k) a.rest_positions[b + v][k] = static_cast<float>(k == 0 ? p.x : k == 1 ? p.y : p.z);
+  };
+  place(0, 5, 4, 2e-7);
+  place(1, n - 1, n - 2, 2e-7);
+  place(2, 8, 7, 1e-7);
+  place(2, 9, 7, 2e-7);
+  place(2, 10, 7, 4e-7);
+  for (size_t g = 0; g < 3; ++g)
+    for (uint32_t v = 0; v + 1 < n; ++v) {
+      const size_t i = g * n + v;
+      const Vec3 d = pos(i + 1) - pos(i);
+      a.rest_lengths[i] = static_cast<float>(model::length(d));
+      const Vec3 e = rotate_inverse(a.rest_frames[i], d);
+      a.rest_edge_local[i] = {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z), 0.0f};
+    }
+  return a;
+}
+
+HardCase scaled_case(double s) {
+  HardCase c;
+  c.name = s < 1 ? "groom scaled 1/100" : "groom scaled 100x";
+  c.setup = std::string("straight 16 x 32 at ") + (s < 1 ? "1/100" : "100x") +
+            " (every length, gravity, speed limit and VSP threshold scaled), shake";
+  c.unscaled_groom = builtin("straight", 16);
+  c.groom = reference::scaled_groom(c.unscaled_groom, s);
+  reference::scale_inputs(s, c.params, c.settings);
+  c.frame_of = scene("shake");
+  c.against = ModelErrorAgainst::kUnscaled;
+  c.scale = s;
+  c.reference_scene = "shake";
+  c.max_model_error = 1e-4;
+  c.criteria_reason =
+      "model error: the GPU trajectory / scale against the unscaled groom on the double reference; float32 rounding "
+      "at the scaled size grows along the trajectory; measured 6.2e-6 to 8.8e-6 (lavapipe, NVIDIA H100), 1e-4 leaves "
+      "room for it";
+  return c;
+}
+
+}  // namespace
+
+std::vector<HardCase> hard_cases() {
+  std::vector<HardCase> out;
+  {
+    HardCase c;
+    c.name = "stiff strands";
+    c.setup = "curly 16 x 32, local stiffness 1, global stiffness 1, 8 local iterations, shake";
+    c.groom = builtin("curly", 16);
+    c.params.local_stiffness = 1.0f;
+    c.params.global_stiffness = 1.0f;
+    c.params.local_iterations = 8;
+    c.frame_of = scene("shake");
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "128-vertex strands";
+    c.setup = "long128 8 x 128 (0.5 m), run (capsules for head and shoulders)";
+    c.groom = builtin("long128", 8);
+    c.frame_of = scene("run");
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "tight curls";
+    c.setup = "12 helices of radius 4 mm, pitch 8 mm, 64 vertices (8.5 per turn), shake";
+    c.groom = tight_curls(12);
+    c.frame_of = scene("shake");
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "frame hitch";
+    c.setup = "curly 16 x 32, hitch (frames alternate 1/60 s and 0.25 s while the head turns and walks)";
+    c.groom = builtin("curly", 16);
+    c.frame_of = scene("hitch");
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "teleport";
+    c.setup = "straight 16 x 32, teleport (a 1 m, 90 degree jump flagged as a teleport at frame 60)";
+    c.groom = builtin("straight", 16);
+    c.frames = 72;
+    c.frame_of = scene("teleport");
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "fast head motion";
+    c.setup = "curly 16 x 32, the shake script at 3x speed (+-60 degrees at 6 Hz)";
+    c.groom = builtin("curly", 16);
+    // Frame f shows the shake script's pose of frame 3f + 2 (its motion 3x as fast), each frame still 1/60 s long.
+    c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) { return reference::scene_frame("shake", 3 * f + 2, g); };
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "10 km from the origin";
+    c.setup = "straight 16 x 32, far (shake 10 km along +X)";
+    c.groom = builtin("straight", 16);
+    c.frame_of = scene("far");
+    c.against = ModelErrorAgainst::kShake;
+    c.reference_scene = "shake";
+    c.max_model_error = 1e-4;
+    c.criteria_reason = "model error: against shake at the origin on the double reference; the same bound as the 1/100 "
+                        "and 100x grooms (float32 rounding grown along the trajectory; measured 2.9e-6 lavapipe, 3.5e-6 NVIDIA H100)";
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "zero-length and duplicate vertices";
+    c.setup = "straight 8 x 32 with segments of 0.1-0.2 um (a vertex next to its parent, a tip on its parent, a "
+              "cluster of 4 vertices within 0.4 um), shake";
+    c.groom = near_duplicates();
+    c.frame_of = scene("shake");
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "perfectly straight strands";
+    c.setup = "straight 16 x 32 (every frame's bend direction ill-defined), settle then shake";
+    c.groom = builtin("straight", 16);
+    c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
+      return reference::scene_frame(f < 20 ? "settle" : "shake", f < 20 ? f : f - 20, g);
+    };
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "roots deep inside a collider";
+    c.setup = "curly 16 x 32, run with the head capsule's radius 1.25x the scalp's (roots 20 % of the radius inside)";
+    c.groom = builtin("curly", 16);
+    c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
+      TvkSimFrame fr = reference::scene_frame("run", f, g);
+      fr.capsules[0].r0 = fr.capsules[0].r1 = static_cast<float>(1.25 * g.head_radius);
+      return fr;
+    };
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "extreme wind";
+    c.setup = "curly 16 x 32, wind of 100 m/s^2 (10 g) gusting +-80 % at 0.5 Hz";
+    c.groom = builtin("curly", 16);
+    c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
+      TvkSimFrame fr = reference::scene_frame("wind", f, g);
+      fr.wind.strength = 100.0f;
+      return fr;
+    };
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "NaN/Inf in host transforms";
+    c.setup = "straight 8 x 32, run; frames 10-18 (even) carry a NaN translation, an Inf rotation, a NaN capsule end, "
+              "an Inf capsule radius and a NaN wind strength";
+    c.groom = builtin("straight", 8);
+    c.frames = 30;
+    c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
+      TvkSimFrame fr = reference::scene_frame("run", f, g);
+      const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+      switch (f) {
+        case 10: fr.transform.translation[1] = nan; break;
+        case 12: fr.transform.rotation[2] = inf; break;
+        case 14: fr.capsules[1].p0[0] = static_cast<float>(nan); break;
+        case 16: fr.capsules[0].r1 = static_cast<float>(inf); break;
+        case 18: fr.wind.strength = static_cast<float>(nan); break;
+        default: break;
+      }
+      return fr;
+    };
+    c.expected_refusals = 5;
+    out.push_back(std::move(c));
+  }
+  {
+    HardCase c;
+    c.name = "strands pinned at both ends";
+    c.setup = "curly 8 x 32 with every other strand's tip pinned too (TressFX bothEndsImmovable), shake";
+    c.groom = builtin("curly", 8);
+    const uint32_t n = c.groom.vertices_per_strand;
+    for (uint32_t g = 0; g < c.groom.guide_count(); g += 2) c.groom.rest_positions[size_t{g} * n + n - 1][3] = 0.0f;
+    c.frame_of = scene("shake");
+    out.push_back(std::move(c));
+  }
+  out.push_back(scaled_case(0.01));
+  out.push_back(scaled_case(100.0));
+  return out;
+}
+
+}  // namespace tressvk::bench
