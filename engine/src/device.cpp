@@ -1,4 +1,5 @@
 #include <tressvk/engine/device.hpp>
+#include <tressvk/engine/sync.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -407,14 +408,7 @@ void Device::run_commands(const std::function<void(VkCommandBuffer)>& record) co
     VkFenceCreateInfo fi{};
     fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     vk_check(vkCreateFence(device_, &fi, nullptr, &fence), "vkCreateFence");
-    VkCommandBufferSubmitInfo cbi{};
-    cbi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-    cbi.commandBuffer = cmd;
-    VkSubmitInfo2 si{};
-    si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &cbi;
-    vk_check(vkQueueSubmit2(queue_, 1, &si, fence), "vkQueueSubmit2");
+    queue_submit(queue_, cmd, fence);
     vk_check(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   } catch (...) {
     vkDeviceWaitIdle(device_);

@@ -7,6 +7,7 @@
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/sync.hpp>
 #include <tressvk/host/hair_readback.hpp>
 #include <tressvk/host/glue.hpp>
 #include <tressvk/engine/timestamps.hpp>
@@ -60,18 +61,11 @@ CopyTiming time_copy(const engine::Device& dev, uint64_t bytes, uint32_t repeats
   dev.run_commands([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, src.handle(), 0, VK_WHOLE_SIZE, 0x3f800000u);
     ts.cmd_reset(cmd);
-    VkMemoryBarrier2 mb{};
-    mb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    VkDependencyInfo dep{};
-    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &mb;
     for (uint32_t i = 0; i < repeats; ++i) {
-      vkCmdPipelineBarrier2(cmd, &dep);  // each copy waits for the one before (write-after-write on dst)
+      // each copy waits for the one before (write-after-write on dst)
+      engine::cmd_memory_barrier(cmd, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
+                                 {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                                  VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT});
       ts.cmd_write(cmd, 2 * i, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
       const VkBufferCopy region{0, 0, half};
       vkCmdCopyBuffer(cmd, src.handle(), dst.handle(), 1, &region);
