@@ -21,13 +21,21 @@ void init_loader() {
     throw Error("cannot load the Vulkan loader (libvulkan.so.1); install libvulkan1 (Debian) and a driver");
 }
 
-std::vector<VkExtensionProperties> instance_extensions(const char* layer) {
+// Vulkan's two-call enumeration: `enumerate(&count, nullptr)`, then `enumerate(&count, data)`.
+template <typename T, typename Enumerate>
+std::vector<T> enumerate_all(Enumerate enumerate, const char* what) {
   uint32_t n = 0;
-  vk_check(vkEnumerateInstanceExtensionProperties(layer, &n, nullptr), "vkEnumerateInstanceExtensionProperties");
-  std::vector<VkExtensionProperties> out(n);
-  vk_check(vkEnumerateInstanceExtensionProperties(layer, &n, out.data()), "vkEnumerateInstanceExtensionProperties");
+  vk_check(enumerate(&n, nullptr), what);
+  std::vector<T> out(n);
+  vk_check(enumerate(&n, out.data()), what);
   out.resize(n);
   return out;
+}
+
+std::vector<VkExtensionProperties> instance_extensions(const char* layer) {
+  return enumerate_all<VkExtensionProperties>(
+      [&](uint32_t* n, VkExtensionProperties* p) { return vkEnumerateInstanceExtensionProperties(layer, n, p); },
+      "vkEnumerateInstanceExtensionProperties");
 }
 
 bool has_extension(const std::vector<VkExtensionProperties>& list, const char* name) {
@@ -36,21 +44,17 @@ bool has_extension(const std::vector<VkExtensionProperties>& list, const char* n
 }
 
 bool has_layer(const char* name) {
-  uint32_t n = 0;
-  vk_check(vkEnumerateInstanceLayerProperties(&n, nullptr), "vkEnumerateInstanceLayerProperties");
-  std::vector<VkLayerProperties> layers(n);
-  vk_check(vkEnumerateInstanceLayerProperties(&n, layers.data()), "vkEnumerateInstanceLayerProperties");
-  return std::any_of(layers.begin(), layers.begin() + n,
+  const auto layers = enumerate_all<VkLayerProperties>(
+      [](uint32_t* n, VkLayerProperties* p) { return vkEnumerateInstanceLayerProperties(n, p); },
+      "vkEnumerateInstanceLayerProperties");
+  return std::any_of(layers.begin(), layers.end(),
                      [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
 std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
-  uint32_t n = 0;
-  vk_check(vkEnumeratePhysicalDevices(instance, &n, nullptr), "vkEnumeratePhysicalDevices");
-  std::vector<VkPhysicalDevice> out(n);
-  vk_check(vkEnumeratePhysicalDevices(instance, &n, out.data()), "vkEnumeratePhysicalDevices");
-  out.resize(n);
-  return out;
+  return enumerate_all<VkPhysicalDevice>(
+      [&](uint32_t* n, VkPhysicalDevice* p) { return vkEnumeratePhysicalDevices(instance, n, p); },
+      "vkEnumeratePhysicalDevices");
 }
 
 std::vector<DeviceCandidate> describe(const std::vector<VkPhysicalDevice>& devices) {
