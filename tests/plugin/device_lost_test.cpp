@@ -87,13 +87,7 @@ TEST_CASE("a device lost in the host's submit: every device call refuses, teardo
     REQUIRE(tressvk_set_frame(instance, &f) == TVK_SUCCESS);
     TvkResult r = tressvk_new_frame(ctx);
     if (r != TVK_SUCCESS) return r;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &instance;
-      r = tressvk_cmd_simulate(ctx, cmd, &si);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_simulate(ctx, cmd, instance); });
     return r;
   };
   REQUIRE(simulate(0) == TVK_SUCCESS);
@@ -108,13 +102,7 @@ TEST_CASE("a device lost in the host's submit: every device call refuses, teardo
   CHECK(says(ctx, "tressvk_new_frame"));
   {
     TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &instance;
-      r = tressvk_cmd_simulate(ctx, cmd, &si);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_simulate(ctx, cmd, instance); });
     CHECK(r == TVK_ERROR_DEVICE_LOST);
     CHECK(says(ctx, "tressvk_cmd_simulate"));
   }
@@ -201,14 +189,7 @@ TEST_CASE("a device loss met by the plugin's own call marks the context lost", "
     TvkAsset other = nullptr;
     const std::vector<std::byte> bytes = asset::write(test::small_groom("straight", 8));
     TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkAssetLoadInfo li{};
-      li.struct_size = sizeof(li);
-      li.data = bytes.data();
-      li.size = bytes.size();
-      li.upload_command_buffer = cmd;
-      r = tressvk_load_asset(ctx, &li, &other);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_load_asset(ctx, cmd, bytes, &other); });
     CHECK(r == TVK_ERROR_DEVICE_LOST);
     CHECK(other == nullptr);
     tressvk_destroy_asset(asset);

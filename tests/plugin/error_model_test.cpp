@@ -188,13 +188,7 @@ TEST_CASE("host misuse gets a clear error: objects of another context, wrong str
   REQUIRE(try_create_instance(ctx.get(), a, nullptr, nullptr, &inst) == TVK_SUCCESS);
   // An instance of another context.
   TvkResult r = TVK_SUCCESS;
-  test::run_commands([&](VkCommandBuffer cmd) {
-    TvkSimulateInfo si{};
-    si.struct_size = sizeof(si);
-    si.instance_count = 1;
-    si.instances = &inst;
-    r = tressvk_cmd_simulate(other.get(), cmd, &si);
-  });
+  test::run_commands([&](VkCommandBuffer cmd) { r = host::record_simulate(other.get(), cmd, inst); });
   CHECK(r == TVK_ERROR_INVALID_ARGUMENT);
   CHECK(mentions(tressvk_last_error(other.get()), "another context"));
   // Wrong struct_size.

@@ -77,14 +77,7 @@ void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& tar
   });
   w.step("tressvk_load_asset", [&] {
     TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkAssetLoadInfo li{};
-      li.struct_size = sizeof(li);
-      li.data = asset_bytes().data();
-      li.size = asset_bytes().size();
-      li.upload_command_buffer = cmd;
-      r = tressvk_load_asset(w.ctx, &li, &w.asset);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_load_asset(w.ctx, cmd, asset_bytes(), &w.asset); });
     return r;
   });
   w.step("tressvk_create_instance", [&] {
@@ -102,11 +95,7 @@ void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& tar
     REQUIRE(tressvk_new_frame(w.ctx) == TVK_SUCCESS);
     TvkResult r = TVK_SUCCESS;
     test::run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &w.instance;
-      r = tressvk_cmd_simulate(w.ctx, cmd, &si);
+      r = host::record_simulate(w.ctx, cmd, w.instance);
       // A failed recording is not submitted half-made: the host resets it (here: nothing else was recorded, and
       // the failing paths record nothing before their last fallible call).
     });

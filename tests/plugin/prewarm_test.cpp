@@ -64,13 +64,7 @@ Counts first_frame(bool prewarm, const engine::OffscreenTarget& target) {
   REQUIRE(tressvk_set_frame(instance, &frame) == TVK_SUCCESS);
   REQUIRE(tressvk_new_frame(ctx) == TVK_SUCCESS);
   TvkResult r = TVK_SUCCESS;
-  test::run_commands([&](VkCommandBuffer cmd) {
-    TvkSimulateInfo si{};
-    si.struct_size = sizeof(si);
-    si.instance_count = 1;
-    si.instances = &instance;
-    r = tressvk_cmd_simulate(ctx, cmd, &si);
-  });
+  test::run_commands([&](VkCommandBuffer cmd) { r = host::record_simulate(ctx, cmd, instance); });
   REQUIRE(r == TVK_SUCCESS);
   out.simulate = control.calls;
 

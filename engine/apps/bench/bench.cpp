@@ -97,11 +97,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
       if (n) gpu_ms.push_back(sum);
     }
     dev.run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &inst;
-      host::check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+      host::check_tvk(host::record_simulate(ctx, cmd, inst), ctx, "tressvk_cmd_simulate");
     });
     steps_total += plan.steps.size();
     if (timed && opt.trajectory) cpu_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());

@@ -204,11 +204,7 @@ int execute_perf_command(const PerfCommand& given) {
         if (f > cmd.warmup + cmd.frames_in_flight && f <= total) sim_ms.push_back(ms);
       }
       fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &inst;
-      host::check_tvk(tressvk_cmd_simulate(ctx, fr.cmd, &si), ctx, "tressvk_cmd_simulate");
+      host::check_tvk(host::record_simulate(ctx, fr.cmd, inst), ctx, "tressvk_cmd_simulate");
       fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       loop.end();
     };
@@ -245,11 +241,7 @@ int execute_perf_command(const PerfCommand& given) {
       host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
       host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
       const engine::FrameLoop::Frame& fr = loop.begin();
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &inst;
-      host::check_tvk(tressvk_cmd_simulate(ctx, fr.cmd, &si), ctx, "tressvk_cmd_simulate");
+      host::check_tvk(host::record_simulate(ctx, fr.cmd, inst), ctx, "tressvk_cmd_simulate");
       loop.end();
       loop.finish();
       const host::HairState after = host::read_hair_state(dev, inst);

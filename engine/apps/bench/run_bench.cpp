@@ -112,11 +112,7 @@ int execute_run_command(const RunCommand& cmd) {
       host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
       host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
       dev.run_commands([&](VkCommandBuffer c) {
-        TvkSimulateInfo si{};
-        si.struct_size = sizeof(si);
-        si.instance_count = 1;
-        si.instances = &inst;
-        host::check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
+        host::check_tvk(host::record_simulate(ctx, c, inst), ctx, "tressvk_cmd_simulate");
       });
       if (f % cmd.dump_every != 0 && f + 1 != cmd.frames) continue;
       const host::HairState state = host::read_hair_state(dev, inst);
