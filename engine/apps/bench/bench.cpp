@@ -1,4 +1,5 @@
 #include "bench.hpp"
+#include "common.hpp"
 
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/check.hpp>
@@ -17,21 +18,6 @@
 #include <stdexcept>
 
 namespace tressvk::bench {
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
-}
-
-}  // namespace
 
 CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& groom, const std::string& groom_name,
                           const CompareOptions& opt) {
@@ -62,6 +48,18 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   std::vector<double> gpu_ms, cpu_ms, step_errors;
   std::map<std::string, std::vector<double>> pass_ms;
   std::map<std::string, uint32_t> pass_dispatches;
+  // The completed frame's pass timings: each pass's time, their sum, and (when asked) each pass's dispatches.
+  const auto collect_timings = [&](bool dispatches) {
+    TvkPassTiming timings[16];
+    const uint32_t n = tressvk_get_pass_timings(ctx, timings, 16);
+    double sum = 0;
+    for (uint32_t i = 0; i < n && i < 16; ++i) {
+      sum += timings[i].milliseconds;
+      pass_ms[timings[i].name].push_back(timings[i].milliseconds);
+      if (dispatches) pass_dispatches[timings[i].name] = timings[i].dispatches;
+    }
+    if (n) gpu_ms.push_back(sum);
+  };
   double traj_sum_sq = 0, stretch_mean_sum = 0;
   uint64_t traj_count = 0, steps_total = 0;
   host::HairState state;  // GPU state after the previous frame, when it was read back
@@ -85,16 +83,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
     host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
     host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
     if (timed && f > opt.warmup) {
-      // The previous frame is complete (frames_in_flight = 1): collect its pass timings.
-      TvkPassTiming timings[16];
-      const uint32_t n = tressvk_get_pass_timings(ctx, timings, 16);
-      double sum = 0;
-      for (uint32_t i = 0; i < n && i < 16; ++i) {
-        sum += timings[i].milliseconds;
-        pass_ms[timings[i].name].push_back(timings[i].milliseconds);
-        pass_dispatches[timings[i].name] = timings[i].dispatches;
-      }
-      if (n) gpu_ms.push_back(sum);
+      collect_timings(true);  // the previous frame is complete (frames_in_flight = 1)
     }
     dev.run_commands([&](VkCommandBuffer cmd) {
       host::check_tvk(host::record_simulate(ctx, cmd, inst), ctx, "tressvk_cmd_simulate");
@@ -128,16 +117,7 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
   }
   // Timings of the last frame.
   tressvk_new_frame(ctx);
-  {
-    TvkPassTiming timings[16];
-    const uint32_t n = tressvk_get_pass_timings(ctx, timings, 16);
-    double sum = 0;
-    for (uint32_t i = 0; i < n && i < 16; ++i) {
-      sum += timings[i].milliseconds;
-      pass_ms[timings[i].name].push_back(timings[i].milliseconds);
-    }
-    if (n) gpu_ms.push_back(sum);
-  }
+  collect_timings(false);  // the dispatch counts stay those of the timed frames
   const uint32_t np = tressvk_get_recorded_passes(ctx, nullptr, 0);
   std::vector<const char*> names(np);
   tressvk_get_recorded_passes(ctx, names.data(), np);

@@ -1,5 +1,7 @@
 #include "perf_bench.hpp"
 
+#include "common.hpp"
+
 #include "params.hpp"
 
 #include <tressvk/asset_io.hpp>
@@ -27,12 +29,6 @@
 
 namespace tressvk::bench {
 namespace {
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
-}
 
 // The bytes a frame must move at the least: the state (positions and the previous positions) read once and written
 // once, prevprev written when VSP runs, tangents written once, the static rest data each pass reads (rest positions
@@ -87,10 +83,7 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
   CLI::App* perf = app.add_subcommand(
       "perf", "GPU time per frame with frames in flight, against a plain copy of the frame's bytes, and the step error");
   cmd.app = perf;
-  auto* source = perf->add_option_group("groom");
-  source->add_option("--asset", cmd.asset_path, "a baked .tvkhair file");
-  source->add_option("--builtin", cmd.builtin, "a procedural groom: straight, curly or long128");
-  source->require_option(1);
+  add_groom_options(*perf, cmd.asset_path, cmd.builtin);
   perf->add_option("--scene", cmd.scene, "settle, shake, run, teleport, wind, hitch or far")->capture_default_str();
   perf->add_option("--frames", cmd.frames, "timed frames")->capture_default_str()->check(CLI::PositiveNumber);
   perf->add_option("--warmup", cmd.warmup, "frames run before timing")->capture_default_str();
@@ -100,9 +93,7 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
   perf->add_option("--guides", cmd.guides, "guides of a built-in groom")->capture_default_str();
   perf->add_option("--follows", cmd.follows, "follow hairs per guide of a built-in groom")->capture_default_str();
   perf->add_option("--vertices", cmd.vertices, "vertices per strand of a built-in groom (0 = its default)");
-  perf->add_option("--step-rate", cmd.settings.time.step_rate, "simulation steps per second")->capture_default_str();
-  perf->add_option("--local-iterations", cmd.params.local_iterations)->capture_default_str();
-  perf->add_option("--length-iterations", cmd.params.length_iterations)->capture_default_str();
+  add_simulation_options(*perf, cmd.params, cmd.settings);
   perf->add_option("--params", cmd.params_path, "JSON parameter file (as compare --params)")->check(CLI::ExistingFile);
   perf->add_option("--json", cmd.json_path, "write the results as JSON");
   perf->add_option("--device", cmd.device, "device index or name substring (default: discrete GPU first)");
@@ -291,14 +282,9 @@ int execute_perf_command(const PerfCommand& given) {
     tressvk_destroy_instance(inst);
     tressvk_destroy_asset(asset);
     tressvk_destroy_context(ctx);
-    if (cmd.validation && dev.messages().count() > 0) {
-      std::fprintf(stderr, "tressvk-bench perf: %llu validation messages\n",
-                   static_cast<unsigned long long>(dev.messages().count()));
-      return 4;
-    }
+    if (validation_failed(dev, cmd.validation, "tressvk-bench perf")) return kExitValidation;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tressvk-bench perf: %s\n", e.what());
-    return 2;
+    return report_failure(e, "tressvk-bench perf");
   }
 
   if (cmd.table_row) {
@@ -312,14 +298,7 @@ int execute_perf_command(const PerfCommand& given) {
   } else {
     std::printf("%s\n", out.dump(2).c_str());
   }
-  if (!cmd.json_path.empty()) {
-    std::ofstream f(cmd.json_path);
-    f << out.dump(2) << "\n";
-    if (!f) {
-      std::fprintf(stderr, "tressvk-bench perf: cannot write %s\n", cmd.json_path.c_str());
-      return 3;
-    }
-  }
+  if (!cmd.json_path.empty() && !write_json(out, cmd.json_path, "tressvk-bench perf")) return kExitCannotWrite;
   return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "run_bench.hpp"
 
+#include "common.hpp"
+
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/device.hpp>
@@ -30,16 +32,11 @@ void add_run_command(CLI::App& app, RunCommand& cmd) {
   CLI::App* run = app.add_subcommand(
       "run", "simulate a groom in a scene on the GPU and dump the guides' world positions (metres) as JSON");
   cmd.app = run;
-  auto* source = run->add_option_group("groom");
-  source->add_option("--asset", cmd.asset_path, "a baked .tvkhair file");
-  source->add_option("--builtin", cmd.builtin, "a procedural groom: straight, curly or long128");
-  source->require_option(1);
+  add_groom_options(*run, cmd.asset_path, cmd.builtin);
   run->add_option("--scene", cmd.scene, "settle (head still, gravity on), shake, run, teleport, wind, hitch or far")
       ->capture_default_str();
   run->add_option("--frames", cmd.frames, "frames of 1/60 s")->capture_default_str();
-  run->add_option("--step-rate", cmd.settings.time.step_rate, "simulation steps per second")->capture_default_str();
-  run->add_option("--local-iterations", cmd.params.local_iterations)->capture_default_str();
-  run->add_option("--length-iterations", cmd.params.length_iterations)->capture_default_str();
+  add_simulation_options(*run, cmd.params, cmd.settings);
   run->add_option("--guides", cmd.guides, "guides of a built-in groom")->capture_default_str();
   run->add_option("--vertices", cmd.vertices, "vertices per strand of a built-in groom (0 = its default)");
   run->add_option("--dump", cmd.dump_path, "the JSON file to write")->required();
@@ -150,8 +147,7 @@ int execute_run_command(const RunCommand& cmd) {
       }
     }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tressvk-bench run: %s\n", e.what());
-    return 2;
+    return report_failure(e, "tressvk-bench run");
   }
   // Written only once the whole run succeeded: no partial output.
   const std::string tmp = cmd.dump_path + ".partial";
