@@ -7,7 +7,7 @@
 #include "leak_check.hpp"
 #include "sim_harness.hpp"
 
-#include "core/fault_injection.hpp"
+#include "fault_context.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/engine/image.hpp>
@@ -66,12 +66,9 @@ const std::vector<std::byte>& asset_bytes() {
 }
 
 void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& target) {
-  auto& dev = test::device();
   w.control.arm(fail_at);
-  w.link.control = &w.control;
   w.step("tressvk_create_context", [&] {
-    TvkContextCreateInfo info = host::context_info(dev);
-    info.next = &w.link;
+    TvkContextCreateInfo info = test::fault_injecting_context_info(w.control, w.link);
     info.frames_in_flight = 2;
     return tressvk_create_context(&info, &w.ctx);
   });
@@ -123,7 +120,7 @@ void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& tar
     return r;
   });
   // Teardown, then nothing may be left.
-  dev.wait_idle();
+  test::device().wait_idle();
   tressvk_destroy_renderer(w.renderer);
   tressvk_destroy_instance(w.instance);
   tressvk_destroy_asset(w.asset);

@@ -114,4 +114,23 @@ asset::HairAsset small_groom(const std::string& name, uint32_t guides, uint32_t 
   return baker::make_builtin_groom(name, options);
 }
 
+TvkResult draw_hair(TvkRenderer renderer, const engine::OffscreenTarget& target, const TvkDrawInfo& draw) {
+  TvkResult r = TVK_SUCCESS;
+  run_commands([&](VkCommandBuffer cmd) {
+    engine::cmd_begin_rendering(cmd, target, {});
+    r = tressvk_cmd_draw_hair(renderer, cmd, &draw);
+    engine::cmd_end_rendering(cmd);
+  });
+  return r;
+}
+
+TvkResult raster_hair(TvkRenderer renderer, const TvkDrawInfo& draw) {
+  TvkRasterInfo info{};
+  info.struct_size = sizeof(info);
+  info.draw = &draw;
+  TvkResult r = TVK_SUCCESS;
+  run_commands([&](VkCommandBuffer cmd) { r = tressvk_cmd_raster_hair(renderer, cmd, &info); });
+  return r;
+}
+
 }  // namespace tressvk::test
