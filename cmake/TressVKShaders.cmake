@@ -1,5 +1,9 @@
 # tressvk_embed_shaders(<target> HEADER <name.h> SOURCES <glsl files...>)
 #
+# A relative source path is taken in shaders/ (what the plugin ships); the engine's, the demo's and the tests'
+# own shaders are named by absolute path from their folders. Every shader may #include from shaders/ and from
+# plugin/model/include (the GPU layout header).
+#
 # Compiles each GLSL file to SPIR-V at build time with glslangValidator (target Vulkan 1.2, so that
 # local_size_x_id stays a plain LocalSize with a specialization constant and needs no maintenance4), validates
 # it with the SPIRV-Tools validator (--spirv-val), and embeds it as `const uint32_t k_spv_<file_name>[]` in a generated header. A depfile

@@ -16,15 +16,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BIN=${2:-}
 DATA=${3:-$ROOT/../data}
 mkdir -p "$OUT"
-if [ -z "$BIN" ]; then
-  BENCH="$ROOT/build/portable/engine/tressvk-bench"
-  BAKE="$ROOT/build/portable/baker/tressvk-bake"
-  export LD_LIBRARY_PATH="$ROOT/build/portable/plugin:${LD_LIBRARY_PATH:-}"
-else
-  BENCH="$BIN/tressvk-bench"
-  BAKE="$BIN/tressvk-bake"
-  export LD_LIBRARY_PATH="$BIN:${LD_LIBRARY_PATH:-}"
-fi
+. "$ROOT/scripts/gpu-tools.sh"
+gpu_tools "$ROOT" "$BIN"
 BUDGET=${BUDGET:-400}
 MOHAWK=${MOHAWK:-$OUT/mohawk.tvkhair}  # a baked Ratboy mohawk with 2 follows; baked from DATADIR when absent
 RATBOY="$DATA/tressfx/ratboy/Ratboy_mohawk.tfx"

@@ -15,15 +15,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BIN=${2:-}
 DATA=${3:-$ROOT/../shared/data}
 mkdir -p "$OUT"
-if [ -z "$BIN" ]; then
-  BENCH="$ROOT/build/portable/engine/tressvk-bench"
-  BAKE="$ROOT/build/portable/baker/tressvk-bake"
-  export LD_LIBRARY_PATH="$ROOT/build/portable/plugin:${LD_LIBRARY_PATH:-}"
-else
-  BENCH="$BIN/tressvk-bench"
-  BAKE="$BIN/tressvk-bake"
-  export LD_LIBRARY_PATH="$BIN:${LD_LIBRARY_PATH:-}"
-fi
+. "$ROOT/scripts/gpu-tools.sh"
+gpu_tools "$ROOT" "$BIN"
 HD="--width 1920 --height 1080"
 TIMED="--frames ${FRAMES:-60} --warmup ${WARMUP:-30}"
 

@@ -15,15 +15,8 @@ OUT=${1:?usage: gpu-soak.sh OUTDIR [BINDIR]}
 BIN=${2:-}
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 mkdir -p "$OUT"
-if [ -z "$BIN" ]; then
-  BENCH="$ROOT/build/portable/engine/tressvk-bench"
-  BAKE="$ROOT/build/portable/baker/tressvk-bake"
-  export LD_LIBRARY_PATH="$ROOT/build/portable/plugin:${LD_LIBRARY_PATH:-}"
-else
-  BENCH="$BIN/tressvk-bench"
-  BAKE="$BIN/tressvk-bake"
-  export LD_LIBRARY_PATH="$BIN:${LD_LIBRARY_PATH:-}"
-fi
+. "$ROOT/scripts/gpu-tools.sh"
+gpu_tools "$ROOT" "$BIN"
 SECS=${SOAK_SECONDS:-3600}
 RATBOY=${RATBOY_DIR:-$ROOT/../shared/data/tressfx/ratboy}
 status=0

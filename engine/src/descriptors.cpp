@@ -66,30 +66,34 @@ DeviceHandle<VkSampler> create_sampler(const Device& device, const SamplerDesc& 
   return DeviceHandle<VkSampler>(device.device(), sampler, vkDestroySampler);
 }
 
-void write_buffer_descriptor(const Device& device, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
-                             VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
-  const VkDescriptorBufferInfo buffer_info{buffer, offset, range};
+namespace {
+
+// One descriptor of `set` at `binding`, from a buffer or an image (the other pointer null).
+void write_descriptor(const Device& device, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                      const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image) {
   VkWriteDescriptorSet write{};
   write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
   write.dstSet = set;
   write.dstBinding = binding;
   write.descriptorCount = 1;
   write.descriptorType = type;
-  write.pBufferInfo = &buffer_info;
+  write.pBufferInfo = buffer;
+  write.pImageInfo = image;
   vkUpdateDescriptorSets(device.device(), 1, &write, 0, nullptr);
+}
+
+}  // namespace
+
+void write_buffer_descriptor(const Device& device, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
+                             VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
+  const VkDescriptorBufferInfo buffer_info{buffer, offset, range};
+  write_descriptor(device, set, binding, type, &buffer_info, nullptr);
 }
 
 void write_image_descriptor(const Device& device, VkDescriptorSet set, uint32_t binding, VkDescriptorType type,
                             VkImageView view, VkImageLayout layout, VkSampler sampler) {
   const VkDescriptorImageInfo image_info{sampler, view, layout};
-  VkWriteDescriptorSet write{};
-  write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  write.dstSet = set;
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = type;
-  write.pImageInfo = &image_info;
-  vkUpdateDescriptorSets(device.device(), 1, &write, 0, nullptr);
+  write_descriptor(device, set, binding, type, nullptr, &image_info);
 }
 
 }  // namespace tressvk::engine

@@ -1,4 +1,5 @@
 #include <tressvk/engine/device.hpp>
+#include <tressvk/engine/sync.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -20,13 +21,21 @@ void init_loader() {
     throw Error("cannot load the Vulkan loader (libvulkan.so.1); install libvulkan1 (Debian) and a driver");
 }
 
-std::vector<VkExtensionProperties> instance_extensions(const char* layer) {
+// Vulkan's two-call enumeration: `enumerate(&count, nullptr)`, then `enumerate(&count, data)`.
+template <typename T, typename Enumerate>
+std::vector<T> enumerate_all(Enumerate enumerate, const char* what) {
   uint32_t n = 0;
-  vk_check(vkEnumerateInstanceExtensionProperties(layer, &n, nullptr), "vkEnumerateInstanceExtensionProperties");
-  std::vector<VkExtensionProperties> out(n);
-  vk_check(vkEnumerateInstanceExtensionProperties(layer, &n, out.data()), "vkEnumerateInstanceExtensionProperties");
+  vk_check(enumerate(&n, nullptr), what);
+  std::vector<T> out(n);
+  vk_check(enumerate(&n, out.data()), what);
   out.resize(n);
   return out;
+}
+
+std::vector<VkExtensionProperties> instance_extensions(const char* layer) {
+  return enumerate_all<VkExtensionProperties>(
+      [&](uint32_t* n, VkExtensionProperties* p) { return vkEnumerateInstanceExtensionProperties(layer, n, p); },
+      "vkEnumerateInstanceExtensionProperties");
 }
 
 bool has_extension(const std::vector<VkExtensionProperties>& list, const char* name) {
@@ -35,21 +44,17 @@ bool has_extension(const std::vector<VkExtensionProperties>& list, const char* n
 }
 
 bool has_layer(const char* name) {
-  uint32_t n = 0;
-  vk_check(vkEnumerateInstanceLayerProperties(&n, nullptr), "vkEnumerateInstanceLayerProperties");
-  std::vector<VkLayerProperties> layers(n);
-  vk_check(vkEnumerateInstanceLayerProperties(&n, layers.data()), "vkEnumerateInstanceLayerProperties");
-  return std::any_of(layers.begin(), layers.begin() + n,
+  const auto layers = enumerate_all<VkLayerProperties>(
+      [](uint32_t* n, VkLayerProperties* p) { return vkEnumerateInstanceLayerProperties(n, p); },
+      "vkEnumerateInstanceLayerProperties");
+  return std::any_of(layers.begin(), layers.end(),
                      [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
 std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
-  uint32_t n = 0;
-  vk_check(vkEnumeratePhysicalDevices(instance, &n, nullptr), "vkEnumeratePhysicalDevices");
-  std::vector<VkPhysicalDevice> out(n);
-  vk_check(vkEnumeratePhysicalDevices(instance, &n, out.data()), "vkEnumeratePhysicalDevices");
-  out.resize(n);
-  return out;
+  return enumerate_all<VkPhysicalDevice>(
+      [&](uint32_t* n, VkPhysicalDevice* p) { return vkEnumeratePhysicalDevices(instance, n, p); },
+      "vkEnumeratePhysicalDevices");
 }
 
 std::vector<DeviceCandidate> describe(const std::vector<VkPhysicalDevice>& devices) {
@@ -407,14 +412,7 @@ void Device::run_commands(const std::function<void(VkCommandBuffer)>& record) co
     VkFenceCreateInfo fi{};
     fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     vk_check(vkCreateFence(device_, &fi, nullptr, &fence), "vkCreateFence");
-    VkCommandBufferSubmitInfo cbi{};
-    cbi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-    cbi.commandBuffer = cmd;
-    VkSubmitInfo2 si{};
-    si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &cbi;
-    vk_check(vkQueueSubmit2(queue_, 1, &si, fence), "vkQueueSubmit2");
+    queue_submit(queue_, cmd, fence);
     vk_check(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   } catch (...) {
     vkDeviceWaitIdle(device_);

@@ -1,4 +1,5 @@
 #include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/sync.hpp>
 
 namespace tressvk::engine {
 
@@ -69,14 +70,7 @@ void FrameLoop::end() {
   Slot& slot = *recording_;
   recording_ = nullptr;
   vk_check(vkEndCommandBuffer(slot.cmd), "vkEndCommandBuffer");
-  VkCommandBufferSubmitInfo cbi{};
-  cbi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-  cbi.commandBuffer = slot.cmd;
-  VkSubmitInfo2 si{};
-  si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-  si.commandBufferInfoCount = 1;
-  si.pCommandBufferInfos = &cbi;
-  vk_check(vkQueueSubmit2(device_.queue(), 1, &si, slot.fence), "vkQueueSubmit2");
+  queue_submit(device_.queue(), slot.cmd, slot.fence);
   slot.pending = true;
 }
 

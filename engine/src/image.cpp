@@ -129,22 +129,23 @@ void cmd_begin_rendering(VkCommandBuffer cmd, const OffscreenTarget& target, con
   info.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
   info.renderArea = {{0, 0}, target.extent()};
   info.layerCount = 1;
+  // Moves the image into `next` and points the attachment at it, loaded or cleared, always stored.
+  const auto attach = [&](VkRenderingAttachmentInfo& a, const Image& image, VkImageAspectFlags aspect,
+                          const ResourceState& previous, const ResourceState& next) {
+    cmd_image_barrier(cmd, image.handle(), aspect, previous, next);
+    a.imageView = image.view();
+    a.imageLayout = next.layout;
+    a.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  };
   if (target.color) {
-    cmd_image_barrier(cmd, target.color.handle(), VK_IMAGE_ASPECT_COLOR_BIT, previous_color, state::kColorAttachment);
-    color.imageView = target.color.view();
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    attach(color, target.color, VK_IMAGE_ASPECT_COLOR_BIT, previous_color, state::kColorAttachment);
     for (int i = 0; i < 4; ++i) color.clearValue.color.float32[i] = clear.color[static_cast<size_t>(i)];
     info.colorAttachmentCount = 1;
     info.pColorAttachments = &color;
   }
   if (target.depth) {
-    cmd_image_barrier(cmd, target.depth.handle(), VK_IMAGE_ASPECT_DEPTH_BIT, previous_depth, state::kDepthAttachment);
-    depth.imageView = target.depth.view();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    attach(depth, target.depth, VK_IMAGE_ASPECT_DEPTH_BIT, previous_depth, state::kDepthAttachment);
     depth.clearValue.depthStencil = {clear.depth, 0};
     info.pDepthAttachment = &depth;
   }

@@ -62,6 +62,25 @@ void Pipeline::cmd_bind_set(VkCommandBuffer cmd, uint32_t set_index, VkDescripto
   vkCmdBindDescriptorSets(cmd, bind_point_, layout_, set_index, 1, &set, 0, nullptr);
 }
 
+namespace {
+
+// Names a freshly created pipeline for the debug tools and wraps it with its layout.
+Pipeline named_pipeline(const Device& device, VkPipeline pipeline, DeviceHandle<VkPipelineLayout> layout,
+                        const char* debug_name, VkPipelineBindPoint bind_point, VkShaderStageFlags push_stages) {
+  device.set_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), debug_name);
+  return Pipeline(std::move(layout), DeviceHandle<VkPipeline>(device.device(), pipeline, vkDestroyPipeline),
+                  bind_point, push_stages);
+}
+
+// out = src + dst * (1 - src.alpha) for colour and alpha (premultiplied "over").
+constexpr VkPipelineColorBlendAttachmentState kPremultipliedOver{
+    VK_TRUE,
+    VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_OP_ADD,
+    VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_OP_ADD,
+    VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT};
+
+}  // namespace
+
 Pipeline create_compute_pipeline(const Device& device, const ComputePipelineDesc& desc) {
   auto module = create_module(device, desc.spirv);
   auto layout = create_pipeline_layout(device, desc.layout, VK_SHADER_STAGE_COMPUTE_BIT);
@@ -78,9 +97,8 @@ Pipeline create_compute_pipeline(const Device& device, const ComputePipelineDesc
   VkPipeline pipeline = VK_NULL_HANDLE;
   vk_check(vkCreateComputePipelines(device.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
            "vkCreateComputePipelines");
-  device.set_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.debug_name);
-  return Pipeline(std::move(layout), DeviceHandle<VkPipeline>(device.device(), pipeline, vkDestroyPipeline),
-                  VK_PIPELINE_BIND_POINT_COMPUTE, VK_SHADER_STAGE_COMPUTE_BIT);
+  return named_pipeline(device, pipeline, std::move(layout), desc.debug_name, VK_PIPELINE_BIND_POINT_COMPUTE,
+                        VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
 Pipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDesc& desc) {
@@ -133,17 +151,8 @@ Pipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDe
 
   std::vector<VkPipelineColorBlendAttachmentState> blend(desc.color_formats.size());
   for (auto& b : blend) {
-    b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                       VK_COLOR_COMPONENT_A_BIT;
-    if (desc.alpha_blend) {
-      b.blendEnable = VK_TRUE;
-      b.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
-      b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-      b.colorBlendOp = VK_BLEND_OP_ADD;
-      b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-      b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-      b.alphaBlendOp = VK_BLEND_OP_ADD;
-    }
+    b = kPremultipliedOver;
+    if (!desc.alpha_blend) b.blendEnable = VK_FALSE;
   }
   VkPipelineColorBlendStateCreateInfo color_blend{};
   color_blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
@@ -187,9 +196,7 @@ Pipeline create_graphics_pipeline(const Device& device, const GraphicsPipelineDe
   VkPipeline pipeline = VK_NULL_HANDLE;
   vk_check(vkCreateGraphicsPipelines(device.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
            "vkCreateGraphicsPipelines");
-  device.set_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline), desc.debug_name);
-  return Pipeline(std::move(layout), DeviceHandle<VkPipeline>(device.device(), pipeline, vkDestroyPipeline),
-                  VK_PIPELINE_BIND_POINT_GRAPHICS, stages);
+  return named_pipeline(device, pipeline, std::move(layout), desc.debug_name, VK_PIPELINE_BIND_POINT_GRAPHICS, stages);
 }
 
 }  // namespace tressvk::engine

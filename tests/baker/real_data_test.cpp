@@ -17,6 +17,14 @@ struct Baked {
   baker::BakeReport report;
 };
 
+// The TressFX samples are authored in centimetres.
+baker::BakeOptions centimetre_options(uint32_t vertices_per_strand) {
+  baker::BakeOptions o;
+  o.units_to_metres = 0.01;
+  o.vertices_per_strand = vertices_per_strand;
+  return o;
+}
+
 Baked bake_files(const std::vector<tvk_test::fs::path>& files, baker::BakeOptions o, const tvk_test::fs::path& bones = {}) {
   Baked b;
   for (const auto& f : files) {
@@ -111,9 +119,7 @@ TEST_CASE("Real data: Ratboy mohawk .tfx v4 with .tfxbone 4.x", "[baker][data]")
 TEST_CASE("Real data: TressFX 3 ponytail, four sections in cm, merged into four groups", "[baker][data]") {
   TVK_REQUIRE_DATA(dir);
   const auto p = dir / "tressfx" / "ponytail";
-  baker::BakeOptions o;
-  o.units_to_metres = 0.01;
-  o.vertices_per_strand = 16;
+  const baker::BakeOptions o = centimetre_options(16);
   const auto b = bake_files({p / "front_top.tfx", p / "side.tfx", p / "back.tfx", p / "tail.tfx"}, o);
   REQUIRE(b.asset.groups.size() == 4);
   std::map<std::string, int> counts;
@@ -137,9 +143,7 @@ TEST_CASE("Real data: TressFX 3 ponytail, four sections in cm, merged into four 
 
 TEST_CASE("Real data: bear fur, 48,113 short strands with near-zero segments", "[baker][data]") {
   TVK_REQUIRE_DATA(dir);
-  baker::BakeOptions o;
-  o.units_to_metres = 0.01;
-  o.vertices_per_strand = 4;
+  const baker::BakeOptions o = centimetre_options(4);
   const auto b = bake_files({dir / "tressfx" / "bear" / "bear.tfx"}, o);
   CHECK(b.raw.strand_count() == 48113);
   CHECK(b.asset.guide_count() + b.report.dropped_short == 48113);
@@ -149,9 +153,7 @@ TEST_CASE("Real data: bear fur, 48,113 short strands with near-zero segments", "
 
 TEST_CASE("Real data: TestHair1, straight strands from a sphere of radius 100", "[baker][data]") {
   TVK_REQUIRE_DATA(dir);
-  baker::BakeOptions o;
-  o.units_to_metres = 0.01;
-  o.vertices_per_strand = 8;
+  const baker::BakeOptions o = centimetre_options(8);
   const auto b = bake_files({dir / "tressfx" / "testhair1" / "TestHair1.tfx"}, o);
   CHECK(b.asset.guide_count() + b.report.dropped_short == 10027);
   CHECK(b.report.max_relative_resample_error < 1e-3);  // straight strands resample almost exactly

@@ -5,6 +5,8 @@
 #include <tressvk/baker/errors.hpp>
 #include <tressvk/baker/procedural.hpp>
 
+#include "vec_math.hpp"  // baker/src: baker::Random
+
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -13,16 +15,11 @@ using namespace tressvk;
 
 namespace {
 
+// Its random numbers are the baker's own deterministic generator (SplitMix64), so a seed is one input everywhere.
 class Mutator {
  public:
-  explicit Mutator(uint64_t seed) : state_(seed) {}
-  uint64_t next() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  size_t below(size_t n) { return n ? static_cast<size_t>(next() % n) : 0; }
+  explicit Mutator(uint64_t seed) : random_(seed) {}
+  size_t below(size_t n) { return static_cast<size_t>(random_.below(n)); }
 
   // One to four random edits: flip, overwrite with an interesting byte, insert, delete, duplicate a span,
   // truncate. Text-aware choices (digits, '-', spaces, newlines, 'l', '/') make OBJ mutations reach deeper.
@@ -60,7 +57,7 @@ class Mutator {
   }
 
  private:
-  uint64_t state_;
+  baker::Random random_;
 };
 
 // TRESSVK_FUZZ_SCALE multiplies the iteration counts for a longer local run (CI keeps the default of 1).
@@ -125,14 +122,12 @@ std::vector<std::byte> tfxbone_seed() {
   return b;
 }
 
-// Returns true on success, false on a reported invalid input; anything else escapes and fails the test.
-bool bake_obj_bytes(const std::vector<std::byte>& b) {
+// Runs `bake_input` (import and bake): true when it gives a valid asset, false on a reported invalid input;
+// anything else escapes and fails the test.
+template <class Bake>
+bool bakes_or_refuses(Bake&& bake_input) {
   try {
-    auto g = baker::import_obj_text(std::string_view(reinterpret_cast<const char*>(b.data()), b.size()), "m.obj");
-    baker::BakeOptions o;
-    o.vertices_per_strand = 5;
-    o.follow_per_guide = 1;
-    const auto a = baker::bake(g, o);
+    const asset::HairAsset a = bake_input();
     const auto issues = asset::validate(a);
     INFO((issues.empty() ? std::string() : issues.front()));
     REQUIRE(issues.empty());
@@ -142,18 +137,22 @@ bool bake_obj_bytes(const std::vector<std::byte>& b) {
   }
 }
 
+bool bake_obj_bytes(const std::vector<std::byte>& b) {
+  return bakes_or_refuses([&] {
+    auto g = baker::import_obj_text(std::string_view(reinterpret_cast<const char*>(b.data()), b.size()), "m.obj");
+    baker::BakeOptions o;
+    o.vertices_per_strand = 5;
+    o.follow_per_guide = 1;
+    return baker::bake(g, o);
+  });
+}
+
 bool bake_tfx_bytes(const std::vector<std::byte>& tfx, const std::vector<std::byte>& bone) {
-  try {
+  return bakes_or_refuses([&] {
     auto g = baker::import_tfx_bytes(tfx, "m.tfx");
     if (!bone.empty()) baker::apply_tfxbone_bytes(g, bone, "m.tfxbone");
-    const auto a = baker::bake(g, {});
-    const auto issues = asset::validate(a);
-    INFO((issues.empty() ? std::string() : issues.front()));
-    REQUIRE(issues.empty());
-    return true;
-  } catch (const baker::InputError&) {
-    return false;
-  }
+    return baker::bake(g, {});
+  });
 }
 
 }  // namespace

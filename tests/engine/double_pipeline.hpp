@@ -1,4 +1,4 @@
-// The doubling compute shader (shaders/tests/double.comp) as a ready pipeline with one storage-buffer set.
+// The doubling compute shader (tests/engine/shaders/double.comp) as a ready pipeline with one storage-buffer set.
 #pragma once
 
 #include <tressvk/engine/descriptors.hpp>

@@ -1,6 +1,7 @@
 # cmake -P script (see CMakeLists.txt): `tressvk-bench run --dump` writes what docs/accuracy.md promises (the frames
 # asked for, every guide root to tip as [x, y, z] in metres, finite), validation-clean; and a bad option exits 1
 # naming it and writes nothing.
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/expect_run.cmake")
 foreach(var BENCH OUT_DIR)
   if(NOT ${var})
     message(FATAL_ERROR "run_bench_dump_test.cmake: ${var} is not set")
@@ -12,13 +13,7 @@ set(dump "${OUT_DIR}/settle.json")
 execute_process(COMMAND "${BENCH}" run --builtin straight --guides 3 --vertices 8 --scene settle --frames 5
                         --dump-every 2 --dump "${dump}" --validation
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "tressvk-bench run exited with ${rc}\n--- stderr:\n${err}")
-endif()
-if(NOT out MATCHES "validation: 0 message\\(s\\)")
-  message(FATAL_ERROR "tressvk-bench run did not report a validation-clean run\n--- stderr:\n${err}")
-endif()
+expect_clean_run("tressvk-bench run")
 file(READ "${dump}" json)
 string(JSON frames LENGTH "${json}" frames)
 if(NOT frames EQUAL 3)

@@ -1,5 +1,6 @@
 # cmake -P script (see CMakeLists.txt): tressvk-bench compare --params reads the parameter file the demo and the
 # viewer write, options on the command line override it, and a broken file is refused naming the file.
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/expect_run.cmake")
 foreach(var BENCH OUT_DIR)
   if(NOT ${var})
     message(FATAL_ERROR "run_bench_params_test.cmake: ${var} is not set")
@@ -41,9 +42,7 @@ endif()
 file(WRITE "${OUT_DIR}/broken.json" "{ \"tressvk_params\": 1, \"simulation\": { \"local_iterations\": \"three\" } }")
 execute_process(COMMAND "${BENCH}" ${common} --params "${OUT_DIR}/broken.json" --json "${OUT_DIR}/broken-out.json"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 1)
-  message(FATAL_ERROR "a broken parameter file should exit 1, got ${rc}:\n${out}\n${err}")
-endif()
+expect_exit_code(1 "tressvk-bench with a broken parameter file")
 if(NOT err MATCHES "broken\\.json" OR NOT err MATCHES "local_iterations")
   message(FATAL_ERROR "the error should name the file and the field:\n${err}")
 endif()

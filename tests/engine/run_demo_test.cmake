@@ -1,5 +1,6 @@
 # cmake -P script (see CMakeLists.txt): runs tressvk-demo with validation and checks what it promises: exit 0,
 # "validation: 0 message(s)", and one PNG per frame in the output directory.
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/expect_run.cmake")
 foreach(var DEMO OUT_DIR FRAMES)
   if(NOT ${var})
     message(FATAL_ERROR "run_demo_test.cmake: ${var} is not set")
@@ -8,13 +9,7 @@ endforeach()
 file(REMOVE_RECURSE "${OUT_DIR}")
 execute_process(COMMAND "${DEMO}" --frames ${FRAMES} --validation --width 320 --height 180 --out "${OUT_DIR}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "tressvk-demo exited with ${rc}\n--- stderr:\n${err}")
-endif()
-if(NOT out MATCHES "validation: 0 message\\(s\\)")
-  message(FATAL_ERROR "tressvk-demo did not report a validation-clean run\n--- stderr:\n${err}")
-endif()
+expect_clean_run("tressvk-demo")
 math(EXPR last "${FRAMES} - 1")
 foreach(i RANGE 0 ${last})
   string(LENGTH "${i}" digits)

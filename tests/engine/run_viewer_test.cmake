@@ -2,6 +2,7 @@
 # validation and synchronization validation. Checks exit 0, "validation: 0 message(s)", the step error of one
 # frame against the double reference, and that the screenshot shows hair (CHECK renders the same frame without hair and compares). Then the bad input: a missing file and a
 # broken one give exit code 2 and a message naming the file, with no window needed to say so.
+include("${CMAKE_CURRENT_LIST_DIR}/../cmake/expect_run.cmake")
 foreach(var VIEWER CHECK XVFB_RUN OUT_DIR)
   if(NOT ${var})
     message(FATAL_ERROR "run_viewer_test.cmake: ${var} is not set")
@@ -24,13 +25,7 @@ set(frames 4)
 set(shot "${OUT_DIR}/viewer.png")
 # -a: a free display number (tests may run in parallel); 24-bit screen for an 8-bit BGRA swapchain.
 run_in_xvfb("${VIEWER}" --frames ${frames} --validation --width 320 --height 180 --screenshot "${shot}" --step-error)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "tressvk-viewer exited with ${rc}\n--- stderr:\n${err}")
-endif()
-if(NOT out MATCHES "validation: 0 message\\(s\\)")
-  message(FATAL_ERROR "tressvk-viewer did not report a validation-clean run\n--- stderr:\n${err}")
-endif()
+expect_clean_run("tressvk-viewer")
 if(NOT out MATCHES "frames: ${frames}\n")
   message(FATAL_ERROR "tressvk-viewer did not show ${frames} frames")
 endif()

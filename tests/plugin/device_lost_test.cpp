@@ -10,7 +10,7 @@
 #include "leak_check.hpp"
 #include "sim_harness.hpp"
 
-#include "core/fault_injection.hpp"
+#include "fault_context.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/host/plugin_host.hpp>
@@ -87,13 +87,7 @@ TEST_CASE("a device lost in the host's submit: every device call refuses, teardo
     REQUIRE(tressvk_set_frame(instance, &f) == TVK_SUCCESS);
     TvkResult r = tressvk_new_frame(ctx);
     if (r != TVK_SUCCESS) return r;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &instance;
-      r = tressvk_cmd_simulate(ctx, cmd, &si);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_simulate(ctx, cmd, instance); });
     return r;
   };
   REQUIRE(simulate(0) == TVK_SUCCESS);
@@ -108,13 +102,7 @@ TEST_CASE("a device lost in the host's submit: every device call refuses, teardo
   CHECK(says(ctx, "tressvk_new_frame"));
   {
     TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &instance;
-      r = tressvk_cmd_simulate(ctx, cmd, &si);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_simulate(ctx, cmd, instance); });
     CHECK(r == TVK_ERROR_DEVICE_LOST);
     CHECK(says(ctx, "tressvk_cmd_simulate"));
   }
@@ -131,21 +119,10 @@ TEST_CASE("a device lost in the host's submit: every device call refuses, teardo
     di.instance = instance;
     di.view = &view;
     const auto target = engine::create_offscreen_target(dev, 32, 32, VK_FORMAT_R8G8B8A8_UNORM);
-    TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      engine::cmd_begin_rendering(cmd, target, {});
-      r = tressvk_cmd_draw_hair(renderer, cmd, &di);
-      engine::cmd_end_rendering(cmd);
-    });
-    CHECK(r == TVK_ERROR_DEVICE_LOST);
+    CHECK(test::draw_hair(renderer, target, di) == TVK_ERROR_DEVICE_LOST);
     CHECK(says(ctx, "tressvk_cmd_draw_hair"));
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkRasterInfo rinfo{};
-      rinfo.struct_size = sizeof(rinfo);
-      rinfo.draw = &di;
-      r = tressvk_cmd_raster_hair(renderer, cmd, &rinfo);
-    });
-    CHECK(r == TVK_ERROR_DEVICE_LOST);
+    CHECK(test::raster_hair(renderer, di) == TVK_ERROR_DEVICE_LOST);
+    TvkResult r = TVK_SUCCESS;
     test::run_commands([&](VkCommandBuffer cmd) {
       engine::cmd_begin_rendering(cmd, target, {});
       r = tressvk_cmd_composite_hair(renderer, cmd);
@@ -178,12 +155,7 @@ TEST_CASE("a device loss met by the plugin's own call marks the context lost", "
   auto& dev = test::device();
   fault::Control control;
   fault::ChainLink link;
-  link.control = &control;
-  TvkContextCreateInfo info = host::context_info(dev);
-  info.next = &link;
-  info.enable_timestamps = 1;
-  TvkContext ctx = nullptr;
-  REQUIRE(tressvk_create_context(&info, &ctx) == TVK_SUCCESS);
+  TvkContext ctx = test::create_fault_injecting_context(control, link, 0, true);
   {
     TvkAsset asset = test::load_asset(ctx, test::small_groom("straight", 8));
     test::GpuInstance inst(ctx, asset, {}, TVK_SIM_SETTINGS_DEFAULT_INIT);
@@ -201,14 +173,7 @@ TEST_CASE("a device loss met by the plugin's own call marks the context lost", "
     TvkAsset other = nullptr;
     const std::vector<std::byte> bytes = asset::write(test::small_groom("straight", 8));
     TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkAssetLoadInfo li{};
-      li.struct_size = sizeof(li);
-      li.data = bytes.data();
-      li.size = bytes.size();
-      li.upload_command_buffer = cmd;
-      r = tressvk_load_asset(ctx, &li, &other);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_load_asset(ctx, cmd, bytes, &other); });
     CHECK(r == TVK_ERROR_DEVICE_LOST);
     CHECK(other == nullptr);
     tressvk_destroy_asset(asset);
@@ -239,26 +204,11 @@ TEST_CASE("drawing an instance that was never simulated is refused with a messag
     di.struct_size = sizeof(di);
     di.instance = inst.handle();
     di.view = &view;
-    const auto draw = [&] {
-      TvkResult r = TVK_SUCCESS;
-      test::run_commands([&](VkCommandBuffer cmd) {
-        engine::cmd_begin_rendering(cmd, target, {});
-        r = tressvk_cmd_draw_hair(renderer, cmd, &di);
-        engine::cmd_end_rendering(cmd);
-      });
-      return r;
-    };
+    const auto draw = [&] { return test::draw_hair(renderer, target, di); };
     CHECK(draw() == TVK_ERROR_INVALID_ARGUMENT);
     CHECK(says(ctx, "tressvk_cmd_draw_hair"));
     CHECK(says(ctx, "not been simulated"));
-    TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkRasterInfo rinfo{};
-      rinfo.struct_size = sizeof(rinfo);
-      rinfo.draw = &di;
-      r = tressvk_cmd_raster_hair(renderer, cmd, &rinfo);
-    });
-    CHECK(r == TVK_ERROR_INVALID_ARGUMENT);
+    CHECK(test::raster_hair(renderer, di) == TVK_ERROR_INVALID_ARGUMENT);
     CHECK(says(ctx, "not been simulated"));
 
     inst.run_frame(moving_frame(0));

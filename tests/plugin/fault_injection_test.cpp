@@ -7,7 +7,7 @@
 #include "leak_check.hpp"
 #include "sim_harness.hpp"
 
-#include "core/fault_injection.hpp"
+#include "fault_context.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/engine/image.hpp>
@@ -66,25 +66,15 @@ const std::vector<std::byte>& asset_bytes() {
 }
 
 void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& target) {
-  auto& dev = test::device();
   w.control.arm(fail_at);
-  w.link.control = &w.control;
   w.step("tressvk_create_context", [&] {
-    TvkContextCreateInfo info = host::context_info(dev);
-    info.next = &w.link;
+    TvkContextCreateInfo info = test::fault_injecting_context_info(w.control, w.link);
     info.frames_in_flight = 2;
     return tressvk_create_context(&info, &w.ctx);
   });
   w.step("tressvk_load_asset", [&] {
     TvkResult r = TVK_SUCCESS;
-    test::run_commands([&](VkCommandBuffer cmd) {
-      TvkAssetLoadInfo li{};
-      li.struct_size = sizeof(li);
-      li.data = asset_bytes().data();
-      li.size = asset_bytes().size();
-      li.upload_command_buffer = cmd;
-      r = tressvk_load_asset(w.ctx, &li, &w.asset);
-    });
+    test::run_commands([&](VkCommandBuffer cmd) { r = host::record_load_asset(w.ctx, cmd, asset_bytes(), &w.asset); });
     return r;
   });
   w.step("tressvk_create_instance", [&] {
@@ -102,11 +92,7 @@ void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& tar
     REQUIRE(tressvk_new_frame(w.ctx) == TVK_SUCCESS);
     TvkResult r = TVK_SUCCESS;
     test::run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = 1;
-      si.instances = &w.instance;
-      r = tressvk_cmd_simulate(w.ctx, cmd, &si);
+      r = host::record_simulate(w.ctx, cmd, w.instance);
       // A failed recording is not submitted half-made: the host resets it (here: nothing else was recorded, and
       // the failing paths record nothing before their last fallible call).
     });
@@ -134,7 +120,7 @@ void run_lifecycle(Walk& w, uint64_t fail_at, const engine::OffscreenTarget& tar
     return r;
   });
   // Teardown, then nothing may be left.
-  dev.wait_idle();
+  test::device().wait_idle();
   tressvk_destroy_renderer(w.renderer);
   tressvk_destroy_instance(w.instance);
   tressvk_destroy_asset(w.asset);

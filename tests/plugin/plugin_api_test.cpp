@@ -36,14 +36,7 @@ TEST_CASE("a corrupt asset is refused with a message naming the problem", "[plug
   bytes[bytes.size() / 2] ^= std::byte{0x40};
   TvkAsset a = nullptr;
   TvkResult r = TVK_SUCCESS;
-  test::run_commands([&](VkCommandBuffer cmd) {
-    TvkAssetLoadInfo info{};
-    info.struct_size = sizeof(info);
-    info.data = bytes.data();
-    info.size = bytes.size();
-    info.upload_command_buffer = cmd;
-    r = tressvk_load_asset(ctx.get(), &info, &a);
-  });
+  test::run_commands([&](VkCommandBuffer cmd) { r = host::record_load_asset(ctx.get(), cmd, bytes, &a); });
   CHECK(r == TVK_ERROR_INVALID_ASSET);
   CHECK(a == nullptr);
   const std::string message = tressvk_last_error(ctx.get());

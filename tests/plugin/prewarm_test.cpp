@@ -4,7 +4,7 @@
 // the cold one, and a second prewarm makes none.
 #include "sim_harness.hpp"
 
-#include "core/fault_injection.hpp"
+#include "fault_context.hpp"
 
 #include <tressvk/engine/image.hpp>
 
@@ -28,12 +28,7 @@ Counts first_frame(bool prewarm, const engine::OffscreenTarget& target) {
   auto& dev = test::device();
   fault::Control control;
   fault::ChainLink link;
-  link.control = &control;
-  TvkContextCreateInfo info = host::context_info(dev);
-  info.next = &link;
-  info.frames_in_flight = 2;
-  TvkContext ctx = nullptr;
-  REQUIRE(tressvk_create_context(&info, &ctx) == TVK_SUCCESS);
+  TvkContext ctx = test::create_fault_injecting_context(control, link, 2, false);
   TvkAsset asset = test::load_asset(ctx, test::small_groom("straight", 12, 1));
   TvkInstanceCreateInfo ci{};
   ci.struct_size = sizeof(ci);
@@ -64,13 +59,7 @@ Counts first_frame(bool prewarm, const engine::OffscreenTarget& target) {
   REQUIRE(tressvk_set_frame(instance, &frame) == TVK_SUCCESS);
   REQUIRE(tressvk_new_frame(ctx) == TVK_SUCCESS);
   TvkResult r = TVK_SUCCESS;
-  test::run_commands([&](VkCommandBuffer cmd) {
-    TvkSimulateInfo si{};
-    si.struct_size = sizeof(si);
-    si.instance_count = 1;
-    si.instances = &instance;
-    r = tressvk_cmd_simulate(ctx, cmd, &si);
-  });
+  test::run_commands([&](VkCommandBuffer cmd) { r = host::record_simulate(ctx, cmd, instance); });
   REQUIRE(r == TVK_SUCCESS);
   out.simulate = control.calls;
 

@@ -2,6 +2,7 @@
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
+#include <tressvk/engine/sync.hpp>
 #include <tressvk/host/hair_readback.hpp>
 
 #include <catch2/catch_test_macros.hpp>
@@ -84,28 +85,14 @@ void GpuInstance::poke_position(size_t vertex, const sim::Vec4& value) {
   TvkInstanceBuffers b{};
   REQUIRE(tressvk_get_instance_buffers(instance_, &b) == TVK_SUCCESS);
   run_commands([&](VkCommandBuffer cmd) {
-    VkMemoryBarrier2 before{};
-    before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    before.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
-    before.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    before.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    before.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    VkDependencyInfo dep{};
-    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &before;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    engine::cmd_memory_barrier(
+        cmd, {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT},
+        {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT});
     const size_t element = sim::vertex_index(vertex / b.vertices_per_strand, vertex % b.vertices_per_strand,
                                              b.vertices_per_strand);
     vkCmdUpdateBuffer(cmd, b.positions, element * sizeof(sim::Vec4), sizeof(sim::Vec4), value.data());
-    VkMemoryBarrier2 after{};
-    after.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    after.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    after.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    after.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    after.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    dep.pMemoryBarriers = &after;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    engine::cmd_memory_barrier(cmd, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
+                               engine::state::kComputeReadWrite);
   });
 }
 
@@ -125,6 +112,25 @@ asset::HairAsset small_groom(const std::string& name, uint32_t guides, uint32_t 
   options.guide_count = guides;
   options.follow_per_guide = follows;
   return baker::make_builtin_groom(name, options);
+}
+
+TvkResult draw_hair(TvkRenderer renderer, const engine::OffscreenTarget& target, const TvkDrawInfo& draw) {
+  TvkResult r = TVK_SUCCESS;
+  run_commands([&](VkCommandBuffer cmd) {
+    engine::cmd_begin_rendering(cmd, target, {});
+    r = tressvk_cmd_draw_hair(renderer, cmd, &draw);
+    engine::cmd_end_rendering(cmd);
+  });
+  return r;
+}
+
+TvkResult raster_hair(TvkRenderer renderer, const TvkDrawInfo& draw) {
+  TvkRasterInfo info{};
+  info.struct_size = sizeof(info);
+  info.draw = &draw;
+  TvkResult r = TVK_SUCCESS;
+  run_commands([&](VkCommandBuffer cmd) { r = tressvk_cmd_raster_hair(renderer, cmd, &info); });
+  return r;
 }
 
 }  // namespace tressvk::test

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <tressvk/asset.hpp>
+#include <tressvk/engine/image.hpp>
 #include <tressvk/reference/simulator.hpp>
 #include <tressvk/test/vulkan.hpp>
 #include <tressvk/tressvk.h>
@@ -58,6 +59,11 @@ void run_frame_batched(TvkContext ctx, const std::vector<GpuInstance*>& instance
 
 // A small built-in groom for lavapipe-sized tests.
 asset::HairAsset small_groom(const std::string& name, uint32_t guides, uint32_t follows = 0);
+
+// tressvk_cmd_draw_hair into `target` (a dynamic-rendering pass around it) and tressvk_cmd_raster_hair, each
+// recorded into its own command buffer, submitted and waited for; they return the plugin's result.
+TvkResult draw_hair(TvkRenderer renderer, const engine::OffscreenTarget& target, const TvkDrawInfo& draw);
+TvkResult raster_hair(TvkRenderer renderer, const TvkDrawInfo& draw);
 
 // A 32x32 orthographic view looking down -z at the origin (the draw calls' smallest valid view).
 TvkView small_ortho_view();

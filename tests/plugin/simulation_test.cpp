@@ -47,6 +47,27 @@ std::vector<TvkSimParams> default_params(const asset::HairAsset& hair) {
   return std::vector<TvkSimParams>(std::max<size_t>(1, hair.groups.size()), TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
 }
 
+// One groom on a fresh context, simulated by a GPU instance and by the reference with the same parameters and
+// settings: `body` drives both; the instance, the asset and the context are released after it.
+template <class Body>
+void side_by_side(const asset::HairAsset& hair, const std::vector<TvkSimParams>& params, const TvkSimSettings& settings,
+                  Body&& body) {
+  test::PluginContext ctx = test::create_plugin_context();
+  TvkAsset a = test::load_asset(ctx.get(), hair);
+  {
+    test::GpuInstance gpu(ctx.get(), a, params, settings);
+    reference::Simulator ref(hair, params, settings);
+    body(gpu, ref, reference::scene_geometry(ref.rest()));
+  }
+  tressvk_destroy_asset(a);
+}
+
+// The same with the default parameters and settings.
+template <class Body>
+void side_by_side(const asset::HairAsset& hair, Body&& body) {
+  side_by_side(hair, default_params(hair), TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT, std::forward<Body>(body));
+}
+
 SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, uint32_t frames,
                       std::vector<TvkSimParams> params = {},
                       TvkSimSettings settings = TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT) {
@@ -361,14 +382,7 @@ TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][sim
 
 TEST_CASE("a strand that goes non-finite is reset and counted, and nothing else is touched", "[plugin][simulation]") {
   const asset::HairAsset hair = test::small_groom("straight", 16);
-  const auto params = default_params(hair);
-  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
-  test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
-  {
-    test::GpuInstance gpu(ctx.get(), a, params, settings);
-    reference::Simulator ref(hair, params, settings);
-    const auto geometry = reference::scene_geometry(ref.rest());
+  side_by_side(hair, [&](test::GpuInstance& gpu, reference::Simulator& ref, const reference::SceneGeometry& geometry) {
     const uint32_t n = hair.vertices_per_strand;
     for (uint32_t f = 0; f < 10; ++f) {
       const TvkSimFrame frame = reference::scene_frame("settle", f, geometry);
@@ -391,20 +405,15 @@ TEST_CASE("a strand that goes non-finite is reset and counted, and nothing else 
     const auto err = reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(),
                                                ref.median_strand_length());
     CHECK(err.max_rel <= kStepErrorBound);
-  }
-  tressvk_destroy_asset(a);
+  });
 }
 
 TEST_CASE("without gravity the rest pose is a fixed point on the GPU", "[plugin][simulation]") {
   const asset::HairAsset hair = test::small_groom("curly", 16);
   TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
   settings.gravity[1] = 0.0f;
-  test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
-  {
-    test::GpuInstance gpu(ctx.get(), a, default_params(hair), settings);
-    reference::Simulator ref(hair, default_params(hair), settings);
-    const auto geometry = reference::scene_geometry(ref.rest());
+  side_by_side(hair, default_params(hair), settings,
+               [&](test::GpuInstance& gpu, reference::Simulator& ref, const reference::SceneGeometry& geometry) {
     gpu.run_frame(reference::scene_frame("settle", 0, geometry));
     const auto first = gpu.state().pos;
     std::vector<test::Point> before_last;
@@ -425,20 +434,12 @@ TEST_CASE("without gravity the rest pose is a fixed point on the GPU", "[plugin]
     // rounding re-projected by the constraints must stay ten times below it.
     CHECK(drift.max_rel <= 1e-5);
     CHECK(flicker.max_rel <= 1e-5);
-  }
-  tressvk_destroy_asset(a);
+  });
 }
 
 TEST_CASE("pinned roots follow the head exactly", "[plugin][simulation]") {
   const asset::HairAsset hair = test::small_groom("straight", 16);
-  const auto params = default_params(hair);
-  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
-  test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
-  {
-    test::GpuInstance gpu(ctx.get(), a, params, settings);
-    reference::Simulator ref(hair, params, settings);
-    const auto geometry = reference::scene_geometry(ref.rest());
+  side_by_side(hair, [&](test::GpuInstance& gpu, reference::Simulator& ref, const reference::SceneGeometry& geometry) {
     const uint32_t n = hair.vertices_per_strand;
     double worst = 0;
     for (uint32_t f = 0; f < 30; ++f) {
@@ -457,8 +458,7 @@ TEST_CASE("pinned roots follow the head exactly", "[plugin][simulation]") {
     }
     INFO("largest pinned-vertex distance from the skinned rest pose: " << worst << " m");
     CHECK(worst <= 1e-6 * ref.median_strand_length());
-  }
-  tressvk_destroy_asset(a);
+  });
 }
 
 TEST_CASE("bone-skinned hair matches the reference (Ratboy, 105 bones rocking out of phase)", "[plugin][simulation][data]") {
@@ -471,14 +471,7 @@ TEST_CASE("bone-skinned hair matches the reference (Ratboy, 105 bones rocking ou
   const asset::HairAsset hair = baker::bake(raw, options);
   const uint32_t bones = static_cast<uint32_t>(hair.bone_names.size());
   REQUIRE(bones > 1);
-  const auto params = default_params(hair);
-  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
-  test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
-  {
-    test::GpuInstance gpu(ctx.get(), a, params, settings);
-    reference::Simulator ref(hair, params, settings);
-    const auto geometry = reference::scene_geometry(ref.rest());
+  side_by_side(hair, [&](test::GpuInstance& gpu, reference::Simulator& ref, const reference::SceneGeometry& geometry) {
     // Bone matrices map the asset's bind space to instance space; the asset's positions are relative to its
     // origin, so the pivot is the head centre expressed in bind space (origin added back).
     const reference::Vec3 c = geometry.head_centre + reference::Vec3{hair.origin[0], hair.origin[1], hair.origin[2]};
@@ -512,6 +505,5 @@ TEST_CASE("bone-skinned hair matches the reference (Ratboy, 105 bones rocking ou
     INFO("skinned Ratboy: step error " << worst);
     CHECK(worst <= kStepErrorBound);
     CHECK(has_pass_containing(passes, "follow"));
-  }
-  tressvk_destroy_asset(a);
+  });
 }

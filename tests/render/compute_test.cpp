@@ -10,6 +10,7 @@
 #include <tressvk/test/vulkan.hpp>
 
 #include "demo_app.hpp"
+#include "still_frame.hpp"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/bake.hpp>
@@ -30,14 +31,8 @@ using tressvk::demo::Options;
 namespace ref = tressvk::reference;
 
 Options scene_options() {
-  Options o;
+  Options o = tressvk::test::still_frame_options(256, 400, 3);  // rest pose: the same vertices in every run
   o.sample = tressvk::demo::Sample::sphere;  // the renderer's own scene (the head sample has its poster tests)
-  o.width = 256;
-  o.height = 256;
-  o.animate = tressvk::demo::Animation::none;
-  o.frame_time = 0.0;  // rest pose: the same vertices in every run
-  o.guides = 400;
-  o.follows = 3;
   return o;
 }
 

@@ -17,6 +17,7 @@
 #include <tressvk/test/vulkan.hpp>
 
 #include "demo_app.hpp"
+#include "still_frame.hpp"
 
 #include <tressvk/engine/png.hpp>
 
@@ -37,13 +38,7 @@ using tressvk::engine::Pixels;
 constexpr uint32_t kSize = 256;
 
 Options golden_options() {
-  Options o;
-  o.width = kSize;
-  o.height = kSize;
-  o.animate = tressvk::demo::Animation::none;
-  o.frame_time = 0.0;
-  o.guides = 400;
-  o.follows = 3;
+  Options o = tressvk::test::still_frame_options(kSize, 400, 3);
   // The renderer's images keep the sphere head with the long128 groom: they test the renderer, and the bundled
   // head sample has its own poster tests (poster_test.cpp).
   o.sample = tressvk::demo::Sample::sphere;

@@ -8,6 +8,7 @@
 #include <tressvk/test/vulkan.hpp>
 
 #include "demo_app.hpp"
+#include "still_frame.hpp"
 
 #include <tressvk/engine/png.hpp>
 
@@ -27,16 +28,7 @@ using tressvk::engine::Pixels;
 
 constexpr uint32_t kSize = 320;
 
-Options poster_options() {
-  Options o;
-  o.width = kSize;
-  o.height = kSize;
-  o.animate = tressvk::demo::Animation::none;
-  o.frame_time = 0.0;
-  o.guides = 600;
-  o.follows = 5;
-  return o;
-}
+Options poster_options() { return tressvk::test::still_frame_options(kSize, 600, 5); }
 
 struct Frame {
   Pixels pixels;

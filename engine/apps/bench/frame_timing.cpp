@@ -8,12 +8,6 @@
 
 namespace tressvk::bench {
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())))];
-}
-
 FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, TvkInstance inst, model::FramePlanner& planner,
                        const std::function<TvkSimFrame(uint32_t)>& frame_of, uint32_t warmup, uint32_t frames,
                        uint32_t in_flight) {
@@ -45,11 +39,7 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, TvkInstance in
       if (f > warmup + in_flight && f <= total) out.sim_ms.push_back(ms);
     }
     fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-    TvkSimulateInfo si{};
-    si.struct_size = sizeof(si);
-    si.instance_count = 1;
-    si.instances = &inst;
-    host::check_tvk(tressvk_cmd_simulate(ctx, fr.cmd, &si), ctx, "tressvk_cmd_simulate");
+    host::check_tvk(host::record_simulate(ctx, fr.cmd, inst), ctx, "tressvk_cmd_simulate");
     fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     loop.end();
   };

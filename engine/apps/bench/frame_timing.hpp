@@ -27,6 +27,4 @@ FrameTimes time_frames(const engine::Device& device, TvkContext context, TvkInst
                        model::FramePlanner& planner, const std::function<TvkSimFrame(uint32_t)>& frame_of,
                        uint32_t warmup, uint32_t frames, uint32_t in_flight);
 
-double percentile(std::vector<double> v, double p);
-
 }  // namespace tressvk::bench

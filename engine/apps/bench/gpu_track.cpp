@@ -50,11 +50,7 @@ TrackResult track(const engine::Device& dev, TvkContext ctx, const asset::HairAs
       steps += plan.steps.size();
       host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
       dev.run_commands([&](VkCommandBuffer c) {
-        TvkSimulateInfo si{};
-        si.struct_size = sizeof(si);
-        si.instance_count = 1;
-        si.instances = &inst;
-        host::check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
+        host::check_tvk(host::record_simulate(ctx, c, inst), ctx, "tressvk_cmd_simulate");
       });
       state = host::read_hair_state(dev, inst);
       have_state = true;

@@ -6,6 +6,7 @@
 //   tressvk-bench sweep --builtin curly --guides 2048 --around-default --csv sweep.csv --json sweep.json
 //   tressvk-bench hardcases --validation --json hardcases.json
 #include "bench.hpp"
+#include "common.hpp"
 #include "params.hpp"
 #include "perf_bench.hpp"
 #include "render_bench.hpp"
@@ -112,10 +113,7 @@ int main(int argc, char** argv) {
   std::string asset_path, builtin, json_path, device;
   bench::CompareOptions o;
   baker::BuiltinGroomOptions groom_options;
-  auto* source = compare->add_option_group("groom");
-  source->add_option("--asset", asset_path, "a baked .tvkhair file");
-  source->add_option("--builtin", builtin, "a procedural groom: straight, curly or long128");
-  source->require_option(1);
+  bench::add_groom_options(*compare, asset_path, builtin);
   compare->add_option("--scene", o.scene, "settle, shake, run, teleport, wind, hitch or far")->required();
   compare->add_option("--frames", o.frames, "timed frames")->capture_default_str();
   compare->add_option("--warmup", o.warmup, "frames run before timing")->capture_default_str();
@@ -125,9 +123,7 @@ int main(int argc, char** argv) {
   compare->add_option("--guides", groom_options.guide_count, "guides of a built-in groom")->capture_default_str();
   compare->add_option("--follows", groom_options.follow_per_guide, "follow hairs per guide of a built-in groom")->capture_default_str();
   compare->add_option("--vertices", groom_options.vertices_per_strand, "vertices per strand of a built-in groom (0 = its default)");
-  compare->add_option("--step-rate", o.settings.time.step_rate, "simulation steps per second")->capture_default_str();
-  compare->add_option("--local-iterations", o.params.local_iterations)->capture_default_str();
-  compare->add_option("--length-iterations", o.params.length_iterations)->capture_default_str();
+  bench::add_simulation_options(*compare, o.params, o.settings);
   std::string params_path;
   compare->add_option("--params", params_path,
                       "JSON parameter file (tressvk-demo --save-params, the viewer's Save): its simulation parameters "
@@ -213,22 +209,11 @@ int main(int argc, char** argv) {
     } else {
       print_table(r);
     }
-    if (!json_path.empty()) {
-      std::ofstream f(json_path);
-      f << to_json(r, o).dump(2) << "\n";
-      if (!f) {
-        std::fprintf(stderr, "tressvk-bench: cannot write %s\n", json_path.c_str());
-        return 3;
-      }
-    }
-    if (validation && dev.messages().count() > 0) {
-      std::fprintf(stderr, "tressvk-bench: %llu validation messages\n",
-                   static_cast<unsigned long long>(dev.messages().count()));
-      return 4;
-    }
+    if (!json_path.empty() && !bench::write_json(to_json(r, o), json_path, "tressvk-bench"))
+      return bench::kExitCannotWrite;
+    if (bench::validation_failed(dev, validation, "tressvk-bench")) return bench::kExitValidation;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tressvk-bench: %s\n", e.what());
-    return 2;
+    return bench::report_failure(e, "tressvk-bench");
   }
   return 0;
 }

@@ -1,6 +1,8 @@
 #include "perf_bench.hpp"
 
+#include "common.hpp"
 #include "frame_timing.hpp"
+
 #include "params.hpp"
 
 #include <tressvk/asset_io.hpp>
@@ -8,6 +10,7 @@
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/sync.hpp>
 #include <tressvk/host/hair_readback.hpp>
 #include <tressvk/host/glue.hpp>
 #include <tressvk/engine/timestamps.hpp>
@@ -55,18 +58,11 @@ CopyTiming time_copy(const engine::Device& dev, uint64_t bytes, uint32_t repeats
   dev.run_commands([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, src.handle(), 0, VK_WHOLE_SIZE, 0x3f800000u);
     ts.cmd_reset(cmd);
-    VkMemoryBarrier2 mb{};
-    mb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    VkDependencyInfo dep{};
-    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &mb;
     for (uint32_t i = 0; i < repeats; ++i) {
-      vkCmdPipelineBarrier2(cmd, &dep);  // each copy waits for the one before (write-after-write on dst)
+      // each copy waits for the one before (write-after-write on dst)
+      engine::cmd_memory_barrier(cmd, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
+                                 {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                                  VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT});
       ts.cmd_write(cmd, 2 * i, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
       const VkBufferCopy region{0, 0, half};
       vkCmdCopyBuffer(cmd, src.handle(), dst.handle(), 1, &region);
@@ -88,10 +84,7 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
   CLI::App* perf = app.add_subcommand(
       "perf", "GPU time per frame with frames in flight, against a plain copy of the frame's bytes, and the step error");
   cmd.app = perf;
-  auto* source = perf->add_option_group("groom");
-  source->add_option("--asset", cmd.asset_path, "a baked .tvkhair file");
-  source->add_option("--builtin", cmd.builtin, "a procedural groom: straight, curly or long128");
-  source->require_option(1);
+  add_groom_options(*perf, cmd.asset_path, cmd.builtin);
   perf->add_option("--scene", cmd.scene, "settle, shake, run, teleport, wind, hitch or far")->capture_default_str();
   perf->add_option("--frames", cmd.frames, "timed frames")->capture_default_str()->check(CLI::PositiveNumber);
   perf->add_option("--warmup", cmd.warmup, "frames run before timing")->capture_default_str();
@@ -101,9 +94,7 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
   perf->add_option("--guides", cmd.guides, "guides of a built-in groom")->capture_default_str();
   perf->add_option("--follows", cmd.follows, "follow hairs per guide of a built-in groom")->capture_default_str();
   perf->add_option("--vertices", cmd.vertices, "vertices per strand of a built-in groom (0 = its default)");
-  perf->add_option("--step-rate", cmd.settings.time.step_rate, "simulation steps per second")->capture_default_str();
-  perf->add_option("--local-iterations", cmd.params.local_iterations)->capture_default_str();
-  perf->add_option("--length-iterations", cmd.params.length_iterations)->capture_default_str();
+  add_simulation_options(*perf, cmd.params, cmd.settings);
   perf->add_option("--params", cmd.params_path, "JSON parameter file (as compare --params)")->check(CLI::ExistingFile);
   perf->add_option("--json", cmd.json_path, "write the results as JSON");
   perf->add_option("--device", cmd.device, "device index or name substring (default: discrete GPU first)");
@@ -209,11 +200,7 @@ int execute_perf_command(const PerfCommand& given) {
       host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
       host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
       dev.run_commands([&](VkCommandBuffer c) {
-        TvkSimulateInfo si{};
-        si.struct_size = sizeof(si);
-        si.instance_count = 1;
-        si.instances = &inst;
-        host::check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
+        host::check_tvk(host::record_simulate(ctx, c, inst), ctx, "tressvk_cmd_simulate");
       });
       const host::HairState after = host::read_hair_state(dev, inst);
       const auto err = reference::position_error(std::span<const std::array<double, 3>>(after.positions),
@@ -262,14 +249,9 @@ int execute_perf_command(const PerfCommand& given) {
     tressvk_destroy_instance(inst);
     tressvk_destroy_asset(asset);
     tressvk_destroy_context(ctx);
-    if (cmd.validation && dev.messages().count() > 0) {
-      std::fprintf(stderr, "tressvk-bench perf: %llu validation messages\n",
-                   static_cast<unsigned long long>(dev.messages().count()));
-      return 4;
-    }
+    if (validation_failed(dev, cmd.validation, "tressvk-bench perf")) return kExitValidation;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tressvk-bench perf: %s\n", e.what());
-    return 2;
+    return report_failure(e, "tressvk-bench perf");
   }
 
   if (cmd.table_row) {
@@ -283,14 +265,7 @@ int execute_perf_command(const PerfCommand& given) {
   } else {
     std::printf("%s\n", out.dump(2).c_str());
   }
-  if (!cmd.json_path.empty()) {
-    std::ofstream f(cmd.json_path);
-    f << out.dump(2) << "\n";
-    if (!f) {
-      std::fprintf(stderr, "tressvk-bench perf: cannot write %s\n", cmd.json_path.c_str());
-      return 3;
-    }
-  }
+  if (!cmd.json_path.empty() && !write_json(out, cmd.json_path, "tressvk-bench perf")) return kExitCannotWrite;
   return 0;
 }
 

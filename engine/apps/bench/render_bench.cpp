@@ -4,6 +4,8 @@
 // with the brute-force reference computed on the CPU from the same captured vertices and host depth.
 #include "render_bench.hpp"
 
+#include "common.hpp"
+
 #include "demo_app.hpp"
 
 #include <tressvk/asset_io.hpp>
@@ -25,12 +27,6 @@
 namespace tressvk::bench {
 
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
 double srgb_encode(double v) {
@@ -58,13 +54,7 @@ reference::LayerError compare_frame(const engine::Pixels& frame, const engine::P
       }
     }
   }
-  if (errors.empty()) return e;
-  double sum = 0;
-  for (double v : errors) sum += v;
-  e.mean = sum / static_cast<double>(errors.size());
-  std::sort(errors.begin(), errors.end());
-  e.p99 = errors[std::min(errors.size() - 1, static_cast<size_t>(0.99 * static_cast<double>(errors.size())))];
-  e.max = errors.back();
+  reference::summarise_errors(std::move(errors), e);
   return e;
 }
 
@@ -281,23 +271,11 @@ int run_render_bench(const RenderBenchOptions& o) {
       j["error_measure"] = "displayed frame RGB against the reference layer over the frame without hair";
     }
     std::printf("%s\n", j.dump(2).c_str());
-    if (!o.json.empty()) {
-      std::ofstream f(o.json);
-      f << j.dump(2) << "\n";
-      if (!f) {
-        std::fprintf(stderr, "tressvk-bench: cannot write %s\n", o.json.c_str());
-        return 3;
-      }
-    }
+    if (!o.json.empty() && !write_json(j, o.json, "tressvk-bench")) return kExitCannotWrite;
     if (!temp.empty()) std::filesystem::remove(temp);
-    if (o.validation && dev.messages().count() > 0) {
-      std::fprintf(stderr, "tressvk-bench: %llu validation messages\n",
-                   static_cast<unsigned long long>(dev.messages().count()));
-      return 4;
-    }
+    if (validation_failed(dev, o.validation, "tressvk-bench")) return kExitValidation;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tressvk-bench: %s\n", e.what());
-    return 2;
+    return report_failure(e, "tressvk-bench");
   }
   return 0;
 }

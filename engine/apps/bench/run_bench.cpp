@@ -1,5 +1,7 @@
 #include "run_bench.hpp"
 
+#include "common.hpp"
+
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/device.hpp>
@@ -30,16 +32,11 @@ void add_run_command(CLI::App& app, RunCommand& cmd) {
   CLI::App* run = app.add_subcommand(
       "run", "simulate a groom in a scene on the GPU and dump the guides' world positions (metres) as JSON");
   cmd.app = run;
-  auto* source = run->add_option_group("groom");
-  source->add_option("--asset", cmd.asset_path, "a baked .tvkhair file");
-  source->add_option("--builtin", cmd.builtin, "a procedural groom: straight, curly or long128");
-  source->require_option(1);
+  add_groom_options(*run, cmd.asset_path, cmd.builtin);
   run->add_option("--scene", cmd.scene, "settle (head still, gravity on), shake, run, teleport, wind, hitch or far")
       ->capture_default_str();
   run->add_option("--frames", cmd.frames, "frames of 1/60 s")->capture_default_str();
-  run->add_option("--step-rate", cmd.settings.time.step_rate, "simulation steps per second")->capture_default_str();
-  run->add_option("--local-iterations", cmd.params.local_iterations)->capture_default_str();
-  run->add_option("--length-iterations", cmd.params.length_iterations)->capture_default_str();
+  add_simulation_options(*run, cmd.params, cmd.settings);
   run->add_option("--guides", cmd.guides, "guides of a built-in groom")->capture_default_str();
   run->add_option("--vertices", cmd.vertices, "vertices per strand of a built-in groom (0 = its default)");
   run->add_option("--dump", cmd.dump_path, "the JSON file to write")->required();
@@ -112,11 +109,7 @@ int execute_run_command(const RunCommand& cmd) {
       host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
       host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
       dev.run_commands([&](VkCommandBuffer c) {
-        TvkSimulateInfo si{};
-        si.struct_size = sizeof(si);
-        si.instance_count = 1;
-        si.instances = &inst;
-        host::check_tvk(tressvk_cmd_simulate(ctx, c, &si), ctx, "tressvk_cmd_simulate");
+        host::check_tvk(host::record_simulate(ctx, c, inst), ctx, "tressvk_cmd_simulate");
       });
       if (f % cmd.dump_every != 0 && f + 1 != cmd.frames) continue;
       const host::HairState state = host::read_hair_state(dev, inst);
@@ -154,8 +147,7 @@ int execute_run_command(const RunCommand& cmd) {
       }
     }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tressvk-bench run: %s\n", e.what());
-    return 2;
+    return report_failure(e, "tressvk-bench run");
   }
   // Written only once the whole run succeeded: no partial output.
   const std::string tmp = cmd.dump_path + ".partial";

@@ -256,11 +256,7 @@ int run_soak() {
     }
     host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
     device->run_commands([&](VkCommandBuffer cmd) {
-      TvkSimulateInfo si{};
-      si.struct_size = sizeof(si);
-      si.instance_count = static_cast<uint32_t>(handles.size());
-      si.instances = handles.data();
-      host::check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+      host::check_tvk(host::record_simulate(ctx, cmd, handles), ctx, "tressvk_cmd_simulate");
     });
     ++t.frames;
     t.instance_frames += handles.size();

@@ -1,5 +1,6 @@
 #include "sweep_bench.hpp"
 
+#include "common.hpp"
 #include "frame_timing.hpp"
 #include "gpu_track.hpp"
 #include "params.hpp"

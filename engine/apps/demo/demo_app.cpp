@@ -255,12 +255,8 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   // ---- Recording.
   const VkCommandBuffer cmd = frame.cmd;
   frame.timestamps->cmd_write(cmd, 0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
-  TvkSimulateInfo si{};
-  si.struct_size = sizeof(si);
-  si.instance_count = 1;
   const TvkInstance instance = hair_->instance();
-  si.instances = &instance;
-  check_tvk(tressvk_cmd_simulate(ctx, cmd, &si), ctx, "tressvk_cmd_simulate");
+  check_tvk(host::record_simulate(ctx, cmd, instance), ctx, "tressvk_cmd_simulate");
   frame.timestamps->cmd_write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
 
   // Shadow pass: the engine's shadow map; the head and the hair both draw into it. Always cleared (and

@@ -260,26 +260,10 @@ void Presenter::present(const engine::Pixels& pixels, const std::function<void(V
   vkCmdEndRenderPass(cmd_);
   engine::vk_check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 
-  VkSemaphoreSubmitInfo wait{};
-  wait.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-  wait.semaphore = acquired_;
-  wait.stageMask = kWriteStages;
-  VkSemaphoreSubmitInfo signal{};
-  signal.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO;
-  signal.semaphore = ready_to_present_[index];
-  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  VkCommandBufferSubmitInfo cbi{};
-  cbi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO;
-  cbi.commandBuffer = cmd_;
-  VkSubmitInfo2 si{};
-  si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2;
-  si.waitSemaphoreInfoCount = 1;
-  si.pWaitSemaphoreInfos = &wait;
-  si.commandBufferInfoCount = 1;
-  si.pCommandBufferInfos = &cbi;
-  si.signalSemaphoreInfoCount = 1;
-  si.pSignalSemaphoreInfos = &signal;
-  engine::vk_check(vkQueueSubmit2(device_.queue(), 1, &si, done_), "vkQueueSubmit2");
+  const VkSemaphoreSubmitInfo wait = engine::semaphore_submit_info(acquired_, kWriteStages);
+  const VkSemaphoreSubmitInfo signal =
+      engine::semaphore_submit_info(ready_to_present_[index], VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+  engine::queue_submit(device_.queue(), cmd_, done_, &wait, &signal);
   submitted_ = true;
 
   VkPresentInfoKHR pi{};

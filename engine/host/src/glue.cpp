@@ -61,15 +61,28 @@ TvkInstance create_instance(TvkContext context, TvkAsset asset, const TvkSimSett
   return instance;
 }
 
+TvkResult record_simulate(TvkContext context, VkCommandBuffer cmd, std::span<const TvkInstance> instances) {
+  TvkSimulateInfo si{};
+  si.struct_size = sizeof(si);
+  si.instance_count = static_cast<uint32_t>(instances.size());
+  si.instances = instances.data();
+  return tressvk_cmd_simulate(context, cmd, &si);
+}
+
+TvkResult record_load_asset(TvkContext context, VkCommandBuffer cmd, std::span<const std::byte> asset_bytes,
+                            TvkAsset* asset) {
+  TvkAssetLoadInfo li{};
+  li.struct_size = sizeof(li);
+  li.data = asset_bytes.data();
+  li.size = asset_bytes.size();
+  li.upload_command_buffer = cmd;
+  return tressvk_load_asset(context, &li, asset);
+}
+
 TvkAsset load_asset(const engine::Device& device, TvkContext context, std::span<const std::byte> asset_bytes) {
   TvkAsset asset = nullptr;
   device.run_commands([&](VkCommandBuffer cmd) {
-    TvkAssetLoadInfo li{};
-    li.struct_size = sizeof(li);
-    li.data = asset_bytes.data();
-    li.size = asset_bytes.size();
-    li.upload_command_buffer = cmd;
-    check_tvk(tressvk_load_asset(context, &li, &asset), context, "tressvk_load_asset");
+    check_tvk(record_load_asset(context, cmd, asset_bytes, &asset), context, "tressvk_load_asset");
   });
   return asset;
 }

@@ -145,14 +145,18 @@ LayerError compare_layers(const HairLayer& actual, const HairLayer& reference) {
       errors.push_back(255.0 * std::abs(va - vr));
     }
   }
-  if (errors.empty()) return e;
+  summarise_errors(std::move(errors), e);
+  return e;
+}
+
+void summarise_errors(std::vector<double> errors, LayerError& e) {
+  if (errors.empty()) return;
   double sum = 0;
   for (double v : errors) sum += v;
   e.mean = sum / static_cast<double>(errors.size());
   std::sort(errors.begin(), errors.end());
   e.p99 = errors[std::min(errors.size() - 1, static_cast<size_t>(0.99 * static_cast<double>(errors.size())))];
   e.max = errors.back();
-  return e;
 }
 
 }  // namespace tressvk::reference

@@ -19,33 +19,34 @@ std::string vformat(const char* format, va_list args) {
   if (n > 0) std::vsnprintf(s.data(), s.size() + 1, format, args);
   return s;
 }
+
+// `out` = the formatted message, or empty when there is no memory for it (the result code still says what happened).
+void set_message(std::string& out, const char* format, va_list args) noexcept {
+  try {
+    out = vformat(format, args);
+  } catch (const std::bad_alloc&) {
+    out.clear();
+  }
+}
 }  // namespace
 
 thread_local std::string g_error_without_context;
 
 TvkResult Context::fail(TvkResult result, const char* format, ...) {
   ++error_serial;
-  try {
-    va_list args;
-    va_start(args, format);
-    last_error = vformat(format, args);
-    va_end(args);
-  } catch (const std::bad_alloc&) {
-    last_error.clear();  // no memory for the message: the result still says what happened
-  }
+  va_list args;
+  va_start(args, format);
+  set_message(last_error, format, args);
+  va_end(args);
   if (info.message_callback) info.message_callback(TVK_MESSAGE_ERROR, last_error.c_str(), info.message_user_data);
   return result;
 }
 
 TvkResult fail_without_context(TvkResult result, const char* format, ...) {
-  try {
-    va_list args;
-    va_start(args, format);
-    g_error_without_context = vformat(format, args);
-    va_end(args);
-  } catch (const std::bad_alloc&) {
-    g_error_without_context.clear();
-  }
+  va_list args;
+  va_start(args, format);
+  set_message(g_error_without_context, format, args);
+  va_end(args);
   return result;
 }
 

@@ -65,23 +65,27 @@ TVK_WRAP(vkInvalidateMappedMemoryRanges, VK_ERROR_OUT_OF_HOST_MEMORY,
 #undef TVK_WRAP
 
 // Pipeline creation fails with every output handle set to VK_NULL_HANDLE, as the specification requires.
-VKAPI_ATTR VkResult VKAPI_CALL wrap_vkCreateComputePipelines(VkDevice d, VkPipelineCache c, uint32_t n,
-                                                             const VkComputePipelineCreateInfo* i,
-                                                             const VkAllocationCallbacks* a, VkPipeline* o) {
-  if (fail_now("vkCreateComputePipelines")) {
+template <typename CreateInfo>
+VkResult create_pipelines(const char* name,
+                          VkResult(VKAPI_PTR* real)(VkDevice, VkPipelineCache, uint32_t, const CreateInfo*,
+                                                    const VkAllocationCallbacks*, VkPipeline*),
+                          VkDevice d, VkPipelineCache c, uint32_t n, const CreateInfo* i, const VkAllocationCallbacks* a,
+                          VkPipeline* o) {
+  if (fail_now(name)) {
     for (uint32_t k = 0; k < n; ++k) o[k] = VK_NULL_HANDLE;
     return VK_ERROR_OUT_OF_HOST_MEMORY;
   }
-  return g_real.vkCreateComputePipelines(d, c, n, i, a, o);
+  return real(d, c, n, i, a, o);
+}
+VKAPI_ATTR VkResult VKAPI_CALL wrap_vkCreateComputePipelines(VkDevice d, VkPipelineCache c, uint32_t n,
+                                                             const VkComputePipelineCreateInfo* i,
+                                                             const VkAllocationCallbacks* a, VkPipeline* o) {
+  return create_pipelines("vkCreateComputePipelines", g_real.vkCreateComputePipelines, d, c, n, i, a, o);
 }
 VKAPI_ATTR VkResult VKAPI_CALL wrap_vkCreateGraphicsPipelines(VkDevice d, VkPipelineCache c, uint32_t n,
                                                               const VkGraphicsPipelineCreateInfo* i,
                                                               const VkAllocationCallbacks* a, VkPipeline* o) {
-  if (fail_now("vkCreateGraphicsPipelines")) {
-    for (uint32_t k = 0; k < n; ++k) o[k] = VK_NULL_HANDLE;
-    return VK_ERROR_OUT_OF_HOST_MEMORY;
-  }
-  return g_real.vkCreateGraphicsPipelines(d, c, n, i, a, o);
+  return create_pipelines("vkCreateGraphicsPipelines", g_real.vkCreateGraphicsPipelines, d, c, n, i, a, o);
 }
 
 // A lost device is not a counted fault: once `device_lost` is set the device stays lost, as a real one does.

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <catch2/catch_test_macros.hpp>
+
 #include <tressvk/asset.hpp>
 #include <tressvk/baker/bake.hpp>
 #include <tressvk/model/math.hpp>
@@ -263,6 +265,14 @@ inline WindTilt wind_tilt(const RunFactory& make) {
   return out;
 }
 
+// A6's bar, the same for the reference and the GPU: the tilt within 0.5 degrees of atan(w/g), and every vertex within
+// 1e-3 L of the straight line.
+inline void check_wind_tilt(const WindTilt& t) {
+  INFO("tilt " << t.angle_deg << " deg, expected " << t.expected_deg << "; off the line " << t.off_line / 0.3 << " L");
+  CHECK(std::abs(t.angle_deg - t.expected_deg) <= 0.5);
+  CHECK(t.off_line <= 1e-3 * 0.3);
+}
+
 // A7. A free 16-vertex strand (nothing pinned, VSP off) falls from rest for `frames` frames at 240 Hz. Verlet
 // integrates constant gravity as x_n = x_0 + g h^2 n (n + 1) / 2; the positions after the first frame (the reset
 // step, then 4 steps) are compared with the end: the worst error of any vertex's fall relative to the expected fall.
@@ -271,6 +281,11 @@ struct FreeFall {
   double expected = 0;  // m
   double worst = 0;     // relative
 };
+// A7's bar: every vertex's fall within `worst` (relative) of the expected fall.
+inline void check_free_fall(const FreeFall& f, double worst) {
+  INFO("fell " << f.fell << " m, expected " << f.expected << "; worst relative error " << f.worst);
+  CHECK(f.worst <= worst);
+}
 inline FreeFall free_fall(const RunFactory& make, uint32_t frames) {
   std::vector<Vec3> pts;
   for (uint32_t v = 0; v < 16; ++v) pts.push_back({0.02 * v, 0.001 * v * v, 0});

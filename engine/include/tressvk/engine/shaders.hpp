@@ -1,4 +1,4 @@
-// The engine's embedded shaders (compiled from shaders/engine/ at build time).
+// The engine's embedded shaders (compiled from engine/shaders/ at build time).
 #pragma once
 
 #include <cstdint>

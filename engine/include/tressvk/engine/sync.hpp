@@ -51,4 +51,11 @@ void cmd_buffer_barrier(VkCommandBuffer cmd, VkBuffer buffer, const ResourceStat
 // A global memory barrier (cheapest to write; fine for buffers).
 void cmd_memory_barrier(VkCommandBuffer cmd, const ResourceState& from, const ResourceState& to);
 
+// One semaphore of a vkQueueSubmit2, waited on or signalled at `stages`.
+VkSemaphoreSubmitInfo semaphore_submit_info(VkSemaphore semaphore, VkPipelineStageFlags2 stages);
+// Submits one command buffer (vkQueueSubmit2), waiting on and signalling at most one semaphore each (null: none),
+// then signalling `fence` (may be VK_NULL_HANDLE). Throws engine::Error naming the failed call.
+void queue_submit(VkQueue queue, VkCommandBuffer cmd, VkFence fence, const VkSemaphoreSubmitInfo* wait = nullptr,
+                  const VkSemaphoreSubmitInfo* signal = nullptr);
+
 }  // namespace tressvk::engine

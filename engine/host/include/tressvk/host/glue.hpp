@@ -35,6 +35,16 @@ TvkInstance create_instance(TvkContext context, TvkAsset asset, const TvkSimSett
 // Throws engine::Error with the plugin's message when a TressVK call fails.
 void check_tvk(TvkResult result, TvkContext context, const char* what);
 
+// Records tressvk_cmd_simulate of `instances` (one TvkSimulateInfo) into `cmd` and returns the plugin's result.
+TvkResult record_simulate(TvkContext context, VkCommandBuffer cmd, std::span<const TvkInstance> instances);
+inline TvkResult record_simulate(TvkContext context, VkCommandBuffer cmd, TvkInstance instance) {
+  return record_simulate(context, cmd, std::span<const TvkInstance>(&instance, 1));
+}
+
+// tressvk_load_asset of an in-memory .tvkhair image, its upload recorded into `cmd`; returns the plugin's result.
+TvkResult record_load_asset(TvkContext context, VkCommandBuffer cmd, std::span<const std::byte> asset_bytes,
+                            TvkAsset* asset);
+
 // Loads a .tvkhair image through the plugin, its upload recorded into a one-time submission on the engine's queue
 // (a streaming engine would put it into the first frame that uses the asset). Throws engine::Error on failure.
 TvkAsset load_asset(const engine::Device& device, TvkContext context, std::span<const std::byte> asset_bytes);

@@ -5,6 +5,7 @@
 
 #include <tressvk/engine/buffer.hpp>
 #include <tressvk/engine/device.hpp>
+#include <tressvk/engine/sync.hpp>
 #include <tressvk/tressvk.h>
 
 #include <array>
@@ -37,17 +38,8 @@ inline HairState read_hair_state(const engine::Device& device, TvkInstance insta
   for (size_t i = 0; i < kCount; ++i)
     copies[i] = engine::create_buffer(device, sizes[i], VK_BUFFER_USAGE_TRANSFER_DST_BIT, engine::MemoryUsage::readback);
   device.run_commands([&](VkCommandBuffer cmd) {
-    VkMemoryBarrier2 barrier{};
-    barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    VkDependencyInfo dep{};
-    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    engine::cmd_memory_barrier(cmd, {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT},
+                               engine::state::kTransferSrc);
     for (size_t i = 0; i < kCount; ++i) {
       const VkBufferCopy region{0, 0, sizes[i]};
       vkCmdCopyBuffer(cmd, sources[i], copies[i].handle(), 1, &region);

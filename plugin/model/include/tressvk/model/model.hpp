@@ -1,6 +1,12 @@
 // The model's rest data, derived once per asset in double precision, and its float32 GPU form. Both the CPU
 // reference and the GPU passes use exactly this data, so they simulate the same model.
 //
+// From the asset the model takes the positions and inverse masses, the root frame (frame[0]), the groups, bone
+// weights and follow offsets as they are. The rest lengths it computes with the baker's formula from the same
+// float32 positions, in double for the reference (the float32 the GPU gets equals the asset's rest_lengths bit for
+// bit). The frames along the strand and the rest edges are its own (below), so the asset's frame[v > 0] and
+// rest_edge_local are not read at runtime; tests/plugin/reference/test_model_rest.cpp checks all of this.
+//
 // Beyond what the asset stores, the model decides per vertex whether the local-shape frame turns onto the edge
 // arriving at v (an edge much shorter than the one leaving v has an unreliable direction in float32, so the frame
 // is carried over it), and re-expresses each rest edge in the frame so defined; and it pins whole strands that

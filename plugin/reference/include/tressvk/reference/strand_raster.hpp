@@ -37,5 +37,7 @@ struct LayerError {
   uint64_t hair_pixels = 0;
 };
 LayerError compare_layers(const HairLayer& actual, const HairLayer& reference);
+// Sets e's mean, 99th percentile and maximum from per-channel `errors` (left as they are when there are none).
+void summarise_errors(std::vector<double> errors, LayerError& e);
 
 }  // namespace tressvk::reference
