@@ -7,7 +7,7 @@
 #
 # BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default build/portable/{engine,baker,plugin}).
 # ASSETDIR (default ../shared/data) holds tressfx/ratboy/Ratboy_mohawk.tfx and sintel/{sintel_hair.tfx,sintel.obj};
-# rows whose data is absent are skipped. QUICK=1 runs only the three target rows. On a machine without a Vulkan
+# rows whose data is absent are skipped. QUICK=1 runs only the target rows; ROWS=REGEX only the rows whose name matches. On a machine without a Vulkan
 # loader, install it first and point VK_DRIVER_FILES at the driver's ICD JSON (see scripts/gpu-bench.sh).
 set -euo pipefail
 OUT=${1:?usage: gpu-render-bench.sh OUTDIR [BINDIR [ASSETDIR]]}
@@ -29,6 +29,7 @@ TIMED="--frames ${FRAMES:-60} --warmup ${WARMUP:-30}"
 
 row() {  # name, then bench arguments
   local name=$1; shift
+  if [ -n "${ROWS:-}" ] && ! [[ $name =~ $ROWS ]]; then return 0; fi
   echo "== $name: $*" >> "$OUT/summary.txt"
   if "$BENCH" render "$@" --json "$OUT/$name.json" > "$OUT/$name.log" 2>&1; then
     grep -E '"(device|shading|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|strands_drawn)"' "$OUT/$name.json" |
