@@ -223,6 +223,7 @@ int run_render_bench(const RenderBenchOptions& o) {
         j["dropped_entries"] = stats.dropped_entries;
         j["dropped_slice_entries"] = stats.dropped_slice_entries;
         j["sliced_tiles"] = stats.sliced_tiles;
+        j["split_tiles"] = stats.split_tiles;
         j["entries"] = stats.entries_requested;
       }
     }

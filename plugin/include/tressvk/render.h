@@ -251,6 +251,7 @@ typedef struct TvkRasterStats {
   uint64_t memory_bytes;              /* device memory of the compute path's buffers */
   uint32_t entry_capacity;
   uint32_t slice_capacity;            /* segments sorted at once per tile */
+  uint64_t split_tiles;               /* over-full tiles composited in depth shares by several workgroups */
 } TvkRasterStats;
 TVK_API TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out_stats);
 

@@ -73,6 +73,7 @@ TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out) {
   out->fragments = c[4];
   out->hair_pixels = c[5];
   out->sliced_tiles = c[6];
+  out->split_tiles = c[7];
   out->memory_bytes = memory_bytes(*s);
   out->entry_capacity = s->entry_capacity;
   out->slice_capacity = kSliceCapacity;

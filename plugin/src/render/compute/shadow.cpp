@@ -68,7 +68,7 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
 
   const uint32_t n = dc.counts[0];
   const uint64_t segments = uint64_t{drawn} * (n - 1);
-  const Push push{{width, height, 0, 0}, {0, drawn, 0, static_cast<uint32_t>(segments)}};
+  const Push push{{width, height, 0, 0}, {0, drawn, 0, static_cast<uint32_t>(segments)}, {}};
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
   region.imageExtent = {width, height, 1};
