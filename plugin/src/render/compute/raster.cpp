@@ -152,7 +152,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
   next("render.vertex");
   bind(Pass::tile_depth);  // no barrier from the vertex pass: its time may overlap the vertex pass's
-  ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
+  ctx.vk.vkCmdDispatch(cmd, (tiles_x + 7) / 8, tiles_y, 1);  // a row of 8 tiles per workgroup
   compute_to_compute(ctx, cmd);
   next("render.tile_depth");
   bind(Pass::count);
