@@ -17,7 +17,9 @@
 // blended "under" what the pixel has through a window of kReorder fragments ordered by the pixel's own depth: the
 // tile's order is each segment's depth near the tile centre, which two crossing segments can invert at a pixel;
 // the window puts such near neighbours back in the pixel's order (the fragment leaving a full window is its
-// nearest). A pixel stops when its transmittance (window included) is below 0.5/255.
+// nearest). A pixel stops kSettle covering fragments after its transmittance (window included) fell below
+// 0.5/255: a fragment later in the tile's order can still be nearer at the pixel, and stopping at once would lose
+// it where one fragment makes the pixel opaque (wide or LOD-widened strands), the window never seeing it.
 // Over-full tiles (more than kSplitAt entries) are not composited by the tile's workgroup (kSplitPass 0) but by
 // the split pass (kSplitPass 1): ceil(count / kSplit) workgroups per tile (the work items scan.comp listed), item
 // j taking the histogram bins whose entries start in [j, j + 1) times count / items in key order, so the items
@@ -39,6 +41,8 @@ layout(constant_id = 2) const uint kReorder = 4u;
 layout(constant_id = 3) const uint kPerFragment = 0u;
 // 0: one workgroup per tile (over-full tiles left to the split pass); 1: one workgroup per split work item.
 layout(constant_id = 4) const uint kSplitPass = 0u;
+// Covering fragments a pixel still takes (into its window) once opaque (kSettleFragments in state.hpp).
+layout(constant_id = 5) const uint kSettle = 4u;
 #include "render/compute/raster_layout.glsl"
 #include "render/compute/shade.glsl"
 
@@ -150,6 +154,7 @@ void main() {
   }
   uint frags = 0u;
   bool done = !inside;
+  uint settle = 0u;  // covering fragments taken since the pixel became opaque
 
   if (lid == 0u) {
     s_done = 0u;
@@ -332,7 +337,7 @@ void main() {
             const float fa = cov * c.a;
             take(z, vec4(fa * c.rgb, fa));
             ++frags;
-            if (trans <= kClear) {
+            if (trans <= kClear && settle++ >= kSettle) {
               done = true;
               atomicAdd(s_done, 1u);
               break;

@@ -154,16 +154,22 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {0}, p[2]);
   if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, {0}, p[3]);
   if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {1}, p[4]);
+  // fine.comp's specialization constants: shared-memory entries, slice, reorder window, per fragment, split pass,
+  // settle fragments (state.hpp).
   if (res == TVK_SUCCESS && !p[5])
-    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 0, 0}, p[5]);
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSliceCapacity, kSliceEntries, kReorderWindow, 0, 0, kSettleFragments}, p[5]);
   if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {0}, p[6]);
   if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {1}, p[7]);
   if (res == TVK_SUCCESS && !p[8])
-    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 1, 0}, p[8]);
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSliceCapacity, kSliceEntries, kReorderWindow, 1, 0, kSettleFragments}, p[8]);
   if (res == TVK_SUCCESS && !p[9])
-    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSplitCapacity, kSliceEntries, kReorderWindow, 0, 1}, p[9]);
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSplitCapacity, kSliceEntries, kReorderWindow, 0, 1, kSettleFragments}, p[9]);
   if (res == TVK_SUCCESS && !p[10])
-    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSplitCapacity, kSliceEntries, kReorderWindow, 1, 1}, p[10]);
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSplitCapacity, kSliceEntries, kReorderWindow, 1, 1, kSettleFragments}, p[10]);
   return res;
 }
 

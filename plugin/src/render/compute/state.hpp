@@ -33,6 +33,8 @@ constexpr uint32_t kTile = 8;
 constexpr uint32_t kSliceCapacity = 256;
 constexpr uint32_t kSliceEntries = 64;
 constexpr uint32_t kReorderWindow = 4;
+// fine.comp: covering fragments a pixel still takes once opaque, so the window can put a nearer later one first.
+constexpr uint32_t kSettleFragments = 4;
 // Over-full tiles (raster_layout.glsl): more than kSplitAt entries are composited by ceil(count / kSplit)
 // workgroups of the split pass, which holds kSplitCapacity entries in shared memory (one load for a share of
 // kSplit entries); at most kSplitSlots work items per call (a tile that does not fit stays whole).
