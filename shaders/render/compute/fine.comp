@@ -136,16 +136,21 @@ void main() {
   const uvec2 p = tile_xy * kTile + gl_LocalInvocationID.xy;
   const bool inside = p.x < pc.size.x && p.y < pc.size.y;
   const uint pixel = p.y * pc.size.x + p.x;
-  const float zhost = inside ? texelFetch(host_depth, ivec2(p), 0).r : 0.0;
-  if (inside && item == 0u && (pc.params.z & kFlagCapture) != 0u) capture_depth[pixel] = zhost;
+  const bool capture = (pc.params.z & kFlagCapture) != 0u;
 
   const uint first = tiles[tiles_count + tile];
   const uint count = first >= pc.params.x ? 0u : min(tiles[tile], pc.params.x - first);
   const uint items = kSplitPass != 0u ? (tiles[tile] + kSplit - 1u) / kSplit : 1u;  // as scan.comp counted them
   if (count == 0u) {  // uniform over the workgroup
-    if (inside) image[pixel] = uvec2(0u);
+    // Nothing to write: the composite draws only the tiles with hair; a captured layer is whole.
+    if (inside && capture) {
+      capture_depth[pixel] = texelFetch(host_depth, ivec2(p), 0).r;
+      image[pixel] = uvec2(0u);
+    }
     return;
   }
+  const float zhost = inside ? texelFetch(host_depth, ivec2(p), 0).r : 0.0;
+  if (inside && item == 0u && capture) capture_depth[pixel] = zhost;
   const uint n = dc.counts.x;
   const vec2 centre = vec2(p) + 0.5;
   for (uint k = 0u; k < kWindow; ++k) {
@@ -380,12 +385,10 @@ void main() {
   if (lid == 0u) {
     atomicAdd(counters[4], s_frags);
     atomicAdd(counters[5], s_hair);
-    if (s_hair > 0u) {  // the rectangle of tiles with hair, for the composite (after the layer's pixels)
+    if (s_hair > 0u) {  // this tile's quad for the composite's indirect draw (after the layer's pixels)
       const uint at = pc.size.x * pc.size.y;
-      atomicMax(image[at].x, 65535u - tile_xy.x);
-      atomicMax(image[at].y, 65535u - tile_xy.y);
-      atomicMax(image[at + 1u].x, tile_xy.x + 1u);
-      atomicMax(image[at + 1u].y, tile_xy.y + 1u);
+      const uint quad = atomicAdd(image[at].x, 6u) / 6u;  // VkDrawIndirectCommand.vertexCount
+      image[at + 2u + quad] = tile_xy;
     }
   }
 }

@@ -249,7 +249,10 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   }
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.counters, 4 * kCounterCount, storage, Memory::device, "hair compute counters");
-  if (res == TVK_SUCCESS) res = grow(ctx, s.image, 8 * pixels + 16, storage, Memory::device, "hair compute layer");
+  // The layer, then the composite's VkDrawIndirectCommand and its list of tiles with hair (fine.comp).
+  if (res == TVK_SUCCESS)
+    res = grow(ctx, s.image, 8 * pixels + 16 + 8 * tiles, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+               Memory::device, "hair compute layer");
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.dom, 4ull * kDomSize * kDomSize * (1 + kDomLayers), storage, Memory::device,
                "hair deep opacity map");
