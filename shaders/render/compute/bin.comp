@@ -1,15 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#extension GL_KHR_shader_subgroup_ballot : require
 // Compute rasterizer, passes 2 and 4: one thread per segment walks the 8 x 8 tiles its footprint touches (the
 // pixels whose centre lies within half its width plus half a pixel of it) and, per tile not entirely in front of
 // it in the host's depth, counts it (kScatter = 0) or writes (its depth nearest the tile centre, segment) at the
 // tile's cursor
-// (kScatter = 1). Both passes take exactly the same decisions. Neighbouring threads are neighbouring segments of a
-// strand and often bin into the same tile at the same step: the threads of a subgroup that do share one atomic
-// (the lowest adds their number; in the scatter each takes its own place after the returned cursor), which cuts
-// the atomics on the few tiles every strand of a dense groom crosses. The order of a tile's entries still varies
-// from run to run; the fine pass sorts them by a total order of their own.
+// (kScatter = 1). Both passes take exactly the same decisions.
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint kScatter = 0u;
 #include "render/compute/raster_layout.glsl"
@@ -42,23 +37,14 @@ void main() {
       const vec2 c = (vec2(tx, ty) + 0.5) * float(kTile);
       const float s = clamp(dot(c - a.xy, d) / len2, 0.0, 1.0);
       if (length(c - (a.xy + s * d)) > tile_radius) continue;  // the footprint misses this tile
-      if (kScatter == 0u) ++binned;
-      for (bool pending = true; pending;) {  // the threads binning into tile t at this step share one atomic
-        if (subgroupBroadcastFirst(t) == t) {
-          pending = false;
-          const uvec4 same = subgroupBallot(true);
-          const uint lanes = subgroupBallotBitCount(same);
-          if (kScatter == 0u) {
-            if (subgroupElect()) atomicAdd(tiles[t], lanes);
-          } else {
-            uint at = 0u;
-            if (subgroupElect()) at = atomicAdd(tiles[2u * tiles_count + t], lanes);
-            at = subgroupBroadcastFirst(at) + subgroupBallotExclusiveBitCount(same);
-            // Sort key: the segment's depth at its point nearest the tile's centre (not its mid-point: a segment
-            // is often longer than a tile, and what matters is its depth where it crosses this tile).
-            if (at < pc.params.x) entries[at] = uvec2(floatBitsToUint(max(mix(a.z, b.z, s), 0.0)), seg);
-          }
-        }
+      if (kScatter == 0u) {
+        atomicAdd(tiles[t], 1u);
+        ++binned;
+      } else {
+        const uint at = atomicAdd(tiles[2u * tiles_count + t], 1u);
+        // Sort key: the segment's depth at its point nearest the tile's centre (not its mid-point: a segment
+        // is often longer than a tile, and what matters is its depth where it crosses this tile).
+        if (at < pc.params.x) entries[at] = uvec2(floatBitsToUint(max(mix(a.z, b.z, s), 0.0)), seg);
       }
     }
   }
