@@ -5,7 +5,7 @@
 // Targets (issue 9, docs/rendering.md): mean error <= 1/255 and 99th percentile <= 8/255 over the hair pixels.
 // They are the acceptance targets themselves, not tolerances widened to pass: the rasterizer sorts whole segments
 // per tile (by their depth near the tile centre) instead of single fragments, reorders only the last 4 fragments
-// of a pixel by their own depth, stops a pixel at alpha >= 1 - 0.5/255 and writes half floats, and those are the
+// of a pixel by their own depth, stops a pixel 4 fragments after alpha >= 1 - 0.5/255 and writes half floats, and those are the
 // differences measured here.
 #include <tressvk/test/vulkan.hpp>
 
