@@ -7,7 +7,7 @@
 #
 # BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default build/portable/{engine,baker,plugin}).
 # ASSETDIR (default ../shared/data) holds tressfx/ratboy/Ratboy_mohawk.tfx and sintel/{sintel_hair.tfx,sintel.obj};
-# rows whose data is absent are skipped. QUICK=1 runs only the three target rows. On a machine without a Vulkan
+# rows whose data is absent are skipped. QUICK=1 runs only the target rows; ROWS=REGEX only the rows whose name matches. On a machine without a Vulkan
 # loader, install it first and point VK_DRIVER_FILES at the driver's ICD JSON (see scripts/gpu-bench.sh).
 set -euo pipefail
 OUT=${1:?usage: gpu-render-bench.sh OUTDIR [BINDIR [ASSETDIR]]}
@@ -22,6 +22,7 @@ TIMED="--frames ${FRAMES:-60} --warmup ${WARMUP:-30}"
 
 row() {  # name, then bench arguments
   local name=$1; shift
+  if [ -n "${ROWS:-}" ] && ! [[ $name =~ $ROWS ]]; then return 0; fi
   echo "== $name: $*" >> "$OUT/summary.txt"
   if "$BENCH" render "$@" --json "$OUT/$name.json" > "$OUT/$name.log" 2>&1; then
     grep -E '"(device|shading|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|strands_drawn)"' "$OUT/$name.json" |
@@ -45,12 +46,20 @@ if [ -f "$DATA/sintel/sintel_hair.tfx" ]; then
   "$BAKE" "$DATA/sintel/sintel_hair.tfx" --scale 0.0046 --follow 6 -o "$SINTEL" > "$OUT/bake_sintel.log" 2>&1
 fi
 
-# The targets: the sphere sample (9,600 x 48, the "bundled sample" before the head sample), Ratboy mohawk + 4 follows, 100,000 strands x 32 (compute path, 1080p).
-row sample-compute-1080p --sample sphere $HD $TIMED --png "$OUT/sample-compute-1080p.png"
+# The targets: the sphere sample (9,600 x 48, the "bundled sample" before the head sample), Ratboy mohawk + 4
+# follows, 100,000 strands x 32 (compute path, 1080p). Each compute row runs as a host runs it (no timestamps inside
+# the calls: each waits for the work before it); its -passes twin times every pass of the same frames.
+NP=--no-pass-timestamps
+twin() {  # name, then bench arguments: the row without and with per-pass timestamps
+  local name=$1; shift
+  row "$name" "$@" $NP
+  row "$name-passes" "$@"
+}
+twin sample-compute-1080p --sample sphere $HD $TIMED --png "$OUT/sample-compute-1080p.png"
 # The bundled head sample (the demo's default scene: face, straight groom, head turn).
-row head-compute-1080p --sample head $HD $TIMED --png "$OUT/head-compute-1080p.png"
-[ -n "$RATBOY" ] && row ratboy4-compute-1080p --asset "$RATBOY" $HD $TIMED --animate shake --png "$OUT/ratboy4-compute-1080p.png"
-row 100k-compute-1080p --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED
+twin head-compute-1080p --sample head $HD $TIMED --png "$OUT/head-compute-1080p.png"
+[ -n "$RATBOY" ] && twin ratboy4-compute-1080p --asset "$RATBOY" $HD $TIMED --animate shake --png "$OUT/ratboy4-compute-1080p.png"
+twin 100k-compute-1080p --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED
 [ "${QUICK:-0}" = 1 ] && exit 0
 
 # The raster path on the same frames; its error: its displayed frame against the reference layer blended over the same
@@ -58,16 +67,16 @@ row 100k-compute-1080p --sample sphere --guides 12500 --follows 7 --vertices 32 
 row sample-raster-1080p --sample sphere $HD --frames 10 --warmup 5 --path raster --png "$OUT/sample-raster-1080p.png"
 [ -n "$RATBOY" ] && row ratboy4-raster-1080p --asset "$RATBOY" $HD --frames 10 --warmup 5 --animate shake --path raster
 # Sintel with her mesh (hair in front of and behind an opaque mesh).
-[ -n "$SINTEL" ] && row sintel6-compute-1080p --asset "$SINTEL" --mesh "$DATA/sintel/sintel.obj" --mesh-scale 0.0046 \
+[ -n "$SINTEL" ] && twin sintel6-compute-1080p --asset "$SINTEL" --mesh "$DATA/sintel/sintel.obj" --mesh-scale 0.0046 \
   $HD $TIMED --png "$OUT/sintel6-compute-1080p.png"
 # Kajiya-Kay per fragment instead of per vertex (time, and the error against the per-vertex-shaded reference).
-row sample-compute-1080p-fragment --sample sphere $HD $TIMED --shade fragment --png "$OUT/sample-compute-1080p-fragment.png"
-[ -n "$RATBOY" ] && row ratboy4-compute-1080p-fragment --asset "$RATBOY" $HD $TIMED --animate shake --shade fragment
-row 100k-compute-1080p-fragment --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --shade fragment
+row sample-compute-1080p-fragment --sample sphere $HD $TIMED --shade fragment --png "$OUT/sample-compute-1080p-fragment.png" $NP
+[ -n "$RATBOY" ] && row ratboy4-compute-1080p-fragment --asset "$RATBOY" $HD $TIMED --animate shake --shade fragment $NP
+row 100k-compute-1080p-fragment --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --shade fragment $NP
 # Speed against error: resolution and LOD.
-row sample-compute-540p --sample sphere --width 960 --height 540 $TIMED
-row sample-compute-2160p --sample sphere --width 3840 --height 2160 $TIMED
-row sample-compute-1080p-lod50 --sample sphere $HD $TIMED --lod-fraction 0.5
-row sample-compute-1080p-lod25 --sample sphere $HD $TIMED --lod-fraction 0.25
-row 100k-compute-1080p-lod25 --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25
-row 100k-compute-2160p --sample sphere --guides 12500 --follows 7 --vertices 32 --width 3840 --height 2160 $TIMED
+row sample-compute-540p --sample sphere --width 960 --height 540 $TIMED $NP
+row sample-compute-2160p --sample sphere --width 3840 --height 2160 $TIMED $NP
+row sample-compute-1080p-lod50 --sample sphere $HD $TIMED --lod-fraction 0.5 $NP
+row sample-compute-1080p-lod25 --sample sphere $HD $TIMED --lod-fraction 0.25 $NP
+twin 100k-compute-1080p-lod25 --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25
+row 100k-compute-2160p --sample sphere --guides 12500 --follows 7 --vertices 32 --width 3840 --height 2160 $TIMED $NP

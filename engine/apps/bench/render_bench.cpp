@@ -87,6 +87,9 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
   c->add_option("--device", o.device, "device index or name substring");
   c->add_flag("--validation", o.validation, "Vulkan validation + synchronization validation (any message fails)");
   c->add_flag("--no-reference", o.no_reference, "skip the reference (speed only)");
+  c->add_flag("--no-pass-timestamps", o.no_pass_timestamps,
+              "compute path: no per-pass timestamps inside the calls (gpu_ms_passes absent; each timestamp waits "
+              "for the work before it, so the calls run as a host without timestamps runs them)");
   c->add_option("--shade", o.shade, "compute path: Kajiya-Kay per vertex or per fragment (the reference shades per vertex)")
       ->check(CLI::IsMember({"vertex", "fragment"}))
       ->capture_default_str();
@@ -108,7 +111,8 @@ int run_render_bench(const RenderBenchOptions& o) {
                                                       {"shake", demo::Animation::shake},
                                                       {"run", demo::Animation::run}};
     d.animate = anim.at(o.animate);
-    d.pass_timestamps = o.path == "compute";  // where the hair's time goes, pass by pass (gpu_ms_passes)
+    // Where the hair's time goes, pass by pass (gpu_ms_passes), unless --no-pass-timestamps.
+    d.pass_timestamps = o.path == "compute" && !o.no_pass_timestamps;
     d.sample = o.sample == "sphere" ? demo::Sample::sphere : demo::Sample::head;
     std::string groom = o.asset.empty() ? (o.sample == "sphere" ? "sphere sample" : "bundled head sample")
                                         : std::filesystem::path(o.asset).filename().string();
@@ -162,6 +166,7 @@ int run_render_bench(const RenderBenchOptions& o) {
     j["width"] = o.width;
     j["height"] = o.height;
     j["frames"] = o.frames;
+    j["pass_timestamps"] = d.pass_timestamps;
     j["strands_drawn"] = strands;
     j["strands_total"] = app.asset_info().total_strands;
     j["vertices_per_strand"] = app.asset_info().vertices_per_strand;
@@ -213,6 +218,7 @@ int run_render_bench(const RenderBenchOptions& o) {
         j["dropped_entries"] = stats.dropped_entries;
         j["dropped_slice_entries"] = stats.dropped_slice_entries;
         j["sliced_tiles"] = stats.sliced_tiles;
+        j["split_tiles"] = stats.split_tiles;
         j["entries"] = stats.entries_requested;
       }
     }

@@ -25,6 +25,7 @@ struct RenderBenchOptions {
   std::string json, png, device;
   bool validation = false;
   bool no_reference = false;
+  bool no_pass_timestamps = false;  // the plugin's per-pass timestamps off (the frame as a host runs it)
 };
 
 CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& options);

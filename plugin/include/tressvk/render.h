@@ -166,8 +166,8 @@ TVK_API TvkResult tressvk_cmd_draw_hair(TvkRenderer renderer, VkCommandBuffer co
  *      and composites them front to back with analytic coverage, depth-tested against the host's depth, into a
  *      renderer-owned hair layer (premultiplied linear RGBA, half floats, one per pixel of the view).
  *   2. tressvk_cmd_composite_hair, recorded INSIDE the host's pass on its colour target (the shading target the
- *      renderer was created for: dynamic rendering or its VkRenderPass/subpass): a rectangle over the tiles with
- *      hair that blends the layer over the colour attachment (ONE, ONE_MINUS_SRC_ALPHA). It neither tests nor
+ *      renderer was created for: dynamic rendering or its VkRenderPass/subpass): one indirect draw, a quad per tile
+ *      with hair, that blends the layer over the colour attachment (ONE, ONE_MINUS_SRC_ALPHA). It neither tests nor
  *      writes depth.
  *
  * Synchronization contract of tressvk_cmd_raster_hair (it records its own barriers, none of which names a host
@@ -251,6 +251,7 @@ typedef struct TvkRasterStats {
   uint64_t memory_bytes;              /* device memory of the compute path's buffers */
   uint32_t entry_capacity;
   uint32_t slice_capacity;            /* segments sorted at once per tile */
+  uint64_t split_tiles;               /* over-full tiles composited in depth shares by several workgroups */
 } TvkRasterStats;
 TVK_API TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out_stats);
 

@@ -17,7 +17,16 @@
 // blended "under" what the pixel has through a window of kReorder fragments ordered by the pixel's own depth: the
 // tile's order is each segment's depth near the tile centre, which two crossing segments can invert at a pixel;
 // the window puts such near neighbours back in the pixel's order (the fragment leaving a full window is its
-// nearest). A pixel stops when its transmittance (window included) is below 0.5/255.
+// nearest). A pixel stops kSettle covering fragments after its transmittance (window included) fell below
+// 0.5/255: a fragment later in the tile's order can still be nearer at the pixel, and stopping at once would lose
+// it where one fragment makes the pixel opaque (wide or LOD-widened strands), the window never seeing it.
+// Over-full tiles (more than kSplitAt entries) are not composited by the tile's workgroup (kSplitPass 0) but by
+// the split pass (kSplitPass 1): ceil(count / kSplit) workgroups per tile (the work items scan.comp listed), item
+// j taking the histogram bins whose entries start in [j, j + 1) times count / items in key order, so the items
+// cover the tile's depth range front to back in disjoint shares of about kSplit entries. Each composites its share
+// as above (its own early termination, a window within its share) into a partial layer; the last item of the tile
+// to finish merges the partials front to back into the layer. A tile of 20,000 entries then costs about what
+// 1,024 do, instead of walking them all in one workgroup while the rest of the GPU idles.
 // Each pixel point belongs to the segment its centre projects onto (t in [0, 1); the strand's last segment
 // includes its tip), so consecutive segments of a strand never both cover it along the strand.
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -30,6 +39,10 @@ layout(constant_id = 2) const uint kReorder = 4u;
 // 1: Kajiya-Kay per fragment from the point and tangent interpolated along the segment (vertex.comp writes
 // them after the drawn vertices); 0: the vertex colours interpolated (the default).
 layout(constant_id = 3) const uint kPerFragment = 0u;
+// 0: one workgroup per tile (over-full tiles left to the split pass); 1: one workgroup per split work item.
+layout(constant_id = 4) const uint kSplitPass = 0u;
+// Covering fragments a pixel still takes (into its window) once opaque (kSettleFragments in state.hpp).
+layout(constant_id = 5) const uint kSettle = 4u;
 #include "render/compute/raster_layout.glsl"
 #include "render/compute/shade.glsl"
 
@@ -48,6 +61,7 @@ const uint kShadeSlots = kPerFragment != 0u ? 64u : 1u;
 shared vec4 s_pa[kShadeSlots], s_ta[kShadeSlots], s_dp[kShadeSlots], s_dt[kShadeSlots];  // per fragment only
 shared uint s_group[kShadeSlots];
 shared uint s_count, s_done, s_kmin, s_kmax, s_w1, s_b1, s_frags, s_hair;
+shared uint s_part[64], s_bstart, s_bend, s_last;  // split pass: the item's bins, and whether it merges
 
 uint bin_of(uint key, uint kmin, uint kmax) {
   return min(uint(float(key - kmin) / float(kmax - kmin + 1u) * float(kBins)), kBins - 1u);
@@ -106,20 +120,37 @@ void take(float z, vec4 c) {
 
 void main() {
   const uint tiles_count = pc.size.z * pc.size.w;
-  const uint tile = gl_WorkGroupID.y * pc.size.z + gl_WorkGroupID.x;
+  uint tile, item = 0u;
+  if (kSplitPass != 0u) {
+    if (gl_WorkGroupID.x >= split_items[0].x) return;
+    const uvec2 it = split_items[2u + gl_WorkGroupID.x];
+    tile = it.x;
+    item = it.y;
+  } else {
+    tile = gl_WorkGroupID.y * pc.size.z + gl_WorkGroupID.x;
+  }
+  const uint slot0 = tiles[4u * tiles_count + tile];
+  if (kSplitPass == 0u && slot0 != kNotSplit) return;  // uniform: the split pass composites this tile
+  const uvec2 tile_xy = uvec2(tile % pc.size.z, tile / pc.size.z);
   const uint lid = gl_LocalInvocationIndex;
-  const uvec2 p = gl_GlobalInvocationID.xy;
+  const uvec2 p = tile_xy * kTile + gl_LocalInvocationID.xy;
   const bool inside = p.x < pc.size.x && p.y < pc.size.y;
   const uint pixel = p.y * pc.size.x + p.x;
-  const float zhost = inside ? texelFetch(host_depth, ivec2(p), 0).r : 0.0;
-  if (inside && (pc.params.z & kFlagCapture) != 0u) capture_depth[pixel] = zhost;
+  const bool capture = (pc.params.z & kFlagCapture) != 0u;
 
   const uint first = tiles[tiles_count + tile];
   const uint count = first >= pc.params.x ? 0u : min(tiles[tile], pc.params.x - first);
+  const uint items = kSplitPass != 0u ? (tiles[tile] + kSplit - 1u) / kSplit : 1u;  // as scan.comp counted them
   if (count == 0u) {  // uniform over the workgroup
-    if (inside) image[pixel] = uvec2(0u);
+    // Nothing to write: the composite draws only the tiles with hair; a captured layer is whole.
+    if (inside && capture) {
+      capture_depth[pixel] = texelFetch(host_depth, ivec2(p), 0).r;
+      image[pixel] = uvec2(0u);
+    }
     return;
   }
+  const float zhost = inside ? texelFetch(host_depth, ivec2(p), 0).r : 0.0;
+  if (inside && item == 0u && capture) capture_depth[pixel] = zhost;
   const uint n = dc.counts.x;
   const vec2 centre = vec2(p) + 0.5;
   for (uint k = 0u; k < kWindow; ++k) {
@@ -128,6 +159,7 @@ void main() {
   }
   uint frags = 0u;
   bool done = !inside;
+  uint settle = 0u;  // covering fragments taken since the pixel became opaque
 
   if (lid == 0u) {
     s_done = 0u;
@@ -164,19 +196,42 @@ void main() {
     kmin = s_kmin;
     kmax = s_kmax;
     for (uint e = lid; e < count; e += 64u) atomicAdd(s_hist[bin_of(entries[first + e].x, kmin, kmax)], 1u);
-    if (lid == 0u) atomicAdd(counters[6], 1u);
+    if (lid == 0u && item == 0u) atomicAdd(counters[6], 1u);
+    if (lid == 0u && item == 0u && kSplitPass != 0u) atomicAdd(counters[7], 1u);
   }
   barrier();
-
-  uint w0 = 0u;  // first bin in shared memory
+  uint wend = kBins;  // the bins this workgroup composites: [w0, wend)
+  uint w0 = 0u;       // first bin in shared memory
+  if (kSplitPass != 0u) {
+    // Bin b belongs to item min(items - 1, (entries in the bins before b) / share): each thread sums 4 bins, the
+    // entries before its bins are the sums of the threads before it.
+    const uint share = (count + items - 1u) / items;
+    s_part[lid] = s_hist[4u * lid] + s_hist[4u * lid + 1u] + s_hist[4u * lid + 2u] + s_hist[4u * lid + 3u];
+    if (lid == 0u) {
+      s_bstart = kBins;
+      s_bend = kBins;
+    }
+    barrier();
+    uint before = 0u;
+    for (uint q = 0u; q < lid; ++q) before += s_part[q];
+    for (uint b = 4u * lid; b < 4u * lid + 4u; ++b) {
+      const uint owner = min(items - 1u, before / max(share, 1u));
+      if (owner >= item) atomicMin(s_bstart, b);
+      if (owner > item) atomicMin(s_bend, b);
+      before += s_hist[b];
+    }
+    barrier();
+    w0 = s_bstart;
+    wend = s_bend;
+  }
   bool stop = false;
-  while (!stop && w0 < kBins) {
+  while (!stop && w0 < wend) {
     if (sliced) {
       // Bins [w0, w1) into shared memory: at most kCap entries (at least one bin with entries); their counts
       // become their starts, then (after the scatter) their ends.
       if (lid == 0u) {
         uint b = w0, acc = 0u;
-        while (b < kBins) {
+        while (b < wend) {
           const uint c = s_hist[b];
           if (acc != 0u && acc + c > kCap) break;
           s_hist[b] = acc;
@@ -287,7 +342,7 @@ void main() {
             const float fa = cov * c.a;
             take(z, vec4(fa * c.rgb, fa));
             ++frags;
-            if (trans <= kClear) {
+            if (trans <= kClear && settle++ >= kSettle) {
               done = true;
               atomicAdd(s_done, 1u);
               break;
@@ -306,19 +361,34 @@ void main() {
   for (uint k = 0u; k < kWindow; ++k) {
     if (wz[k] < kEmpty) emit(unpack(wc[k]));
   }
-  if (inside) image[pixel] = uvec2(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, alpha)));
   atomicAdd(s_frags, frags);
-  if (alpha > 0.0) atomicAdd(s_hair, 1u);
+  if (kSplitPass == 0u) {
+    if (inside) image[pixel] = uvec2(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, alpha)));
+    if (alpha > 0.0) atomicAdd(s_hair, 1u);
+  } else {
+    // This item's share into its partial layer; the tile's last item to finish merges all of them in order.
+    partials[(slot0 + item) * 64u + lid] = uvec2(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, alpha)));
+    memoryBarrierBuffer();
+    barrier();
+    if (lid == 0u) s_last = atomicAdd(tiles[5u * tiles_count + tile], 1u) == items - 1u ? 1u : 0u;
+    barrier();
+    if (s_last != 0u) {  // uniform
+      memoryBarrierBuffer();
+      color = vec3(0.0);
+      alpha = 0.0;
+      for (uint j = 0u; j < items; ++j) emit(unpack(partials[(slot0 + j) * 64u + lid]));
+      if (inside) image[pixel] = uvec2(packHalf2x16(color.rg), packHalf2x16(vec2(color.b, alpha)));
+      if (alpha > 0.0) atomicAdd(s_hair, 1u);
+    }
+  }
   barrier();
   if (lid == 0u) {
     atomicAdd(counters[4], s_frags);
     atomicAdd(counters[5], s_hair);
-    if (s_hair > 0u) {  // the rectangle of tiles with hair, for the composite (after the layer's pixels)
+    if (s_hair > 0u) {  // this tile's quad for the composite's indirect draw (after the layer's pixels)
       const uint at = pc.size.x * pc.size.y;
-      atomicMax(image[at].x, 65535u - gl_WorkGroupID.x);
-      atomicMax(image[at].y, 65535u - gl_WorkGroupID.y);
-      atomicMax(image[at + 1u].x, gl_WorkGroupID.x + 1u);
-      atomicMax(image[at + 1u].y, gl_WorkGroupID.y + 1u);
+      const uint quad = atomicAdd(image[at].x, 6u) / 6u;  // VkDrawIndirectCommand.vertexCount
+      image[at + 2u + quad] = tile_xy;
     }
   }
 }

@@ -7,17 +7,26 @@ layout(set = 0, binding = 5) uniform sampler2D shadow_map;   // host shadow map 
 layout(set = 0, binding = 6) uniform sampler2D host_depth;   // host opaque depth, Vulkan 0..1, LESS_OR_EQUAL
 // Per drawn vertex v: [2v] = (x px, y px, depth 0..1 or -1 if culled, width px), [2v+1] = (linear rgb, opacity).
 layout(std430, set = 0, binding = 7) buffer Verts { vec4 verts[]; };
-// Per tile t of T: [t] segment count, [T+t] first entry, [2T+t] scatter cursor, [3T+t] farthest host depth bits.
+// Per tile t of T: [t] segment count, [T+t] first entry, [2T+t] scatter cursor, [3T+t] farthest host depth bits,
+// [4T+t] first split slot (kNotSplit: composited whole), [5T+t] its work items finished (fine.comp).
 layout(std430, set = 0, binding = 8) buffer Tiles { uint tiles[]; };
 // Tile entries: x = sort key (depth bits), y = segment index.
 layout(std430, set = 0, binding = 9) buffer Entries { uvec2 entries[]; };
 // 0: entries requested, 1: entries dropped (over capacity), 2: segments binned, 3: entries dropped from an
-// over-full depth bin, 4: fragments composited, 5: hair pixels, 6: tiles that needed depth slices.
+// over-full depth bin, 4: fragments composited, 5: hair pixels, 6: tiles that needed depth slices, 7: tiles split
+// across workgroups.
 layout(std430, set = 0, binding = 10) buffer Counters { uint counters[]; };
 // Output, per pixel: premultiplied rgba as two packHalf2x16 words.
 layout(std430, set = 0, binding = 11) buffer Image { uvec2 image[]; };
 // Capture only: the host depth the fine pass read, per pixel.
 layout(std430, set = 0, binding = 12) buffer Capture { float capture_depth[]; };
+
+// Over-full tiles' work items (scan.comp -> fine.comp): [0], [1] the split pass's indirect dispatch (slots used,
+// 1, 1), [2 + slot] = (tile, item index).
+layout(std430, set = 0, binding = 14) buffer Split { uvec2 split_items[]; };
+// Per split slot, 64 pixels: the item's premultiplied rgba (two packHalf2x16 words), merged front to back by the
+// tile's last item to finish (written and read by different workgroups of one dispatch: coherent).
+layout(std430, set = 0, binding = 15) coherent buffer Partials { uvec2 partials[]; };
 
 // Deep opacity map of the hair seen from the shadowed light, kDomSize^2 texels: [texel] nearest hair depth (m, float
 // bits), then kDomLayers layers of fibre density (fixed point, kDomUnit per texel fully covered by one fibre).
@@ -26,9 +35,15 @@ layout(std430, set = 0, binding = 13) buffer Dom { uint dom[]; };
 layout(push_constant) uniform Raster {
   uvec4 size;    // x: width, y: height, z: tiles x, w: tiles y
   uvec4 params;  // x: entry capacity, y: strands drawn, z: flags (1 capture, 2 reverse strands), w: segments
+  uvec4 split;   // x: split work item slots (partial layers)
 } pc;
 
 const uint kTile = 8u;          // tile edge in pixels (8 x 8 = one workgroup of the fine pass)
+// A tile with more than kSplitAt entries is composited by ceil(count / kSplit) workgroups, each a contiguous share
+// of its depth-key histogram (kSplit* in plugin/src/render/compute/state.hpp; pc.split.x items at most).
+const uint kSplitAt = 2048u;
+const uint kSplit = 1024u;
+const uint kNotSplit = 0xffffffffu;
 const uint kFlagCapture = 1u;
 const uint kFlagReverse = 2u;
 const uint kFlagShadowed = 4u;   // a shadow map was given: build and read the deep opacity map

@@ -1,5 +1,6 @@
 // tressvk_cmd_composite_hair: the hair layer of the last raster call blended over the host's colour target, a
-// rectangle over the tiles with hair (composite.vert) inside the host's pass.
+// quad per tile with hair (composite.vert; an indirect draw the raster call's fine pass sized) inside the host's
+// pass.
 #include "state.hpp"
 
 namespace tressvk::render::compute {
@@ -41,7 +42,8 @@ TvkResult record_composite(TvkRenderer_T& r, VkCommandBuffer cmd) {
   ctx.vk.vkCmdPushConstants(cmd, s.composite_layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                             sizeof(size), size);
   const uint32_t timed = ctx.time_begin(cmd);
-  ctx.vk.vkCmdDraw(cmd, 6, 1, 0, 0);  // the rectangle of the tiles with hair (composite.vert)
+  // The VkDrawIndirectCommand after the layer's pixels (fine.comp: 6 vertices per tile with hair).
+  ctx.vk.vkCmdDrawIndirect(cmd, s.image.buffer, 8 * VkDeviceSize{s.width} * s.height, 1, 16);
   ctx.time_end(cmd, timed, "render.composite");
   return TVK_SUCCESS;
 }
@@ -73,6 +75,7 @@ TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out) {
   out->fragments = c[4];
   out->hair_pixels = c[5];
   out->sliced_tiles = c[6];
+  out->split_tiles = c[7];
   out->memory_bytes = memory_bytes(*s);
   out->entry_capacity = s->entry_capacity;
   out->slice_capacity = kSliceCapacity;

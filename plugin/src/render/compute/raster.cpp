@@ -1,5 +1,6 @@
 // tressvk_cmd_raster_hair: the compute strand rasterizer's passes, recorded outside the host's passes.
-//   clear -> [deep opacity map: nearest hair -> fibre layers] -> [vertex shading | tile host depth] -> count -> scan -> scatter -> fine (sort + composite per tile)
+//   clear -> [deep opacity map: nearest hair -> fibre layers] -> [vertex shading | tile host depth] -> count -> scan
+//   -> scatter -> [fine (sort + composite per tile) | fine split (over-full tiles in shares, indirect)]
 // with a compute-to-compute memory barrier between dependent passes (docs/rendering.md, "The compute path").
 #include "state.hpp"
 
@@ -75,6 +76,8 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   buffers[kImage] = {s.image.buffer, 0, VK_WHOLE_SIZE};
   buffers[kCapture] = {s.capture_depth.buffer, 0, VK_WHOLE_SIZE};
   buffers[kDom] = {s.dom.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kSplitItems] = {s.split_items.buffer, 0, VK_WHOLE_SIZE};
+  buffers[kPartials] = {s.partials.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo depth_image{s.sampler, info->depth_view, info->depth_layout};
   const VkDescriptorImageInfo shadow_image =
       shadowed ? VkDescriptorImageInfo{s.sampler, draw.shadow->depth_view, draw.shadow->layout} : depth_image;
@@ -104,20 +107,22 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
             {s.entry_capacity, drawn,
              (info->flags & (TVK_RASTER_CAPTURE | TVK_RASTER_REVERSE_STRANDS)) | (shadowed ? kFlagShadowed : 0u) |
                  (per_fragment ? kFlagPerFragment : 0u),
-             static_cast<uint32_t>(segments)}};
+             static_cast<uint32_t>(segments)},
+            {s.split_slots, 0, 0, 0}};
 
   // The previous frame's raster and composite calls used the same buffers: wait for them (and make their
   // writes available) before clearing.
   memory_barrier(ctx, cmd,
                  kCompute | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
                  kCompute | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  kStorageRW | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   uint32_t timed = ctx.time_begin(cmd);  // per-pass GPU times (tressvk_get_pass_timings) when timestamps are on
   ctx.vk.vkCmdFillBuffer(cmd, s.tiles.buffer, 0, 4 * tile_count, 0);
   ctx.vk.vkCmdFillBuffer(cmd, s.counters.buffer, 0, 4 * kCounterCount, 0);
-  ctx.vk.vkCmdFillBuffer(cmd, s.image.buffer, 8 * uint64_t{width} * height, 16, 0);  // hair bounds (fine.comp)
+  const uint32_t no_quads[4] = {0, 1, 0, 0};  // the composite's draw: 0 vertices (fine.comp adds 6 per hair tile)
+  ctx.vk.vkCmdUpdateBuffer(cmd, s.image.buffer, 8 * uint64_t{width} * height, sizeof(no_quads), no_quads);
   const VkDeviceSize dom_texels = VkDeviceSize{kDomSize} * kDomSize;
   if (shadowed) {
     ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 0, 4 * dom_texels, 0x7f800000u);  // nearest hair: +infinity
@@ -148,7 +153,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
   next("render.vertex");
   bind(Pass::tile_depth);  // no barrier from the vertex pass: its time may overlap the vertex pass's
-  ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
+  ctx.vk.vkCmdDispatch(cmd, (tiles_x + 7) / 8, tiles_y, 1);  // a row of 8 tiles per workgroup
   compute_to_compute(ctx, cmd);
   next("render.tile_depth");
   bind(Pass::count);
@@ -157,7 +162,9 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   next("render.bin_count");
   bind(Pass::scan);
   ctx.vk.vkCmdDispatch(cmd, 1, 1, 1);
-  compute_to_compute(ctx, cmd);
+  // The scan also wrote the split pass's indirect dispatch size.
+  memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                 kCompute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, kStorageRW | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
   next("render.scan");
   bind(Pass::scatter);
   ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
@@ -165,12 +172,16 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   next("render.bin_scatter");
   bind(per_fragment ? Pass::fine_per_fragment : Pass::fine);
   ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
+  // No barrier: the split pass composites only the tiles the pass above skips (and its own partial layers).
+  bind(per_fragment ? Pass::fine_split_per_fragment : Pass::fine_split);
+  ctx.vk.vkCmdDispatchIndirect(cmd, s.split_items.buffer, 0);
   ctx.time_end(cmd, timed, "render.fine");
   // The layer for the composite call's fragment shader; the counters (and captures) for the copies below.
   memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                 VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+                 VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                     VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy counters{0, 0, 4 * kCounterCount};
   ctx.vk.vkCmdCopyBuffer(cmd, s.counters.buffer, s.stats_readback.buffer, 1, &counters);
   if (capture) {

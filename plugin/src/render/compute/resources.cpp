@@ -84,7 +84,7 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
     if (!r.compute) return ctx.fail(TVK_ERROR_OUT_OF_MEMORY, "hair compute rasterizer: out of host memory");
   }
   State& s = *r.compute;
-  if (s.pipelines[static_cast<size_t>(Pass::fine)]) return TVK_SUCCESS;
+  if (s.pipelines[static_cast<size_t>(Pass::fine_split_per_fragment)]) return TVK_SUCCESS;
   if (!s.set_layout) {
     std::array<VkDescriptorSetLayoutBinding, kBindingCount> b{};
     for (uint32_t i = 0; i < kBindingCount; ++i) {
@@ -132,7 +132,7 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
     for (uint32_t i = 0; i < ctx.frames_in_flight; ++i) {
       const std::array<VkDescriptorPoolSize, 3> sizes{
           VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2 * r.max_draws},
-          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 17 * r.max_draws},
+          VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 19 * r.max_draws},
           VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * r.max_draws}};
       VkDescriptorPoolCreateInfo pci{};
       pci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
@@ -154,12 +154,22 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {0}, p[2]);
   if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, {0}, p[3]);
   if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {1}, p[4]);
+  // fine.comp's specialization constants: shared-memory entries, slice, reorder window, per fragment, split pass,
+  // settle fragments (state.hpp).
   if (res == TVK_SUCCESS && !p[5])
-    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 0}, p[5]);
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSliceCapacity, kSliceEntries, kReorderWindow, 0, 0, kSettleFragments}, p[5]);
   if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {0}, p[6]);
   if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {1}, p[7]);
   if (res == TVK_SUCCESS && !p[8])
-    res = make_compute(ctx, s.layout, k_spv_fine_comp, {kSliceCapacity, kSliceEntries, kReorderWindow, 1}, p[8]);
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSliceCapacity, kSliceEntries, kReorderWindow, 1, 0, kSettleFragments}, p[8]);
+  if (res == TVK_SUCCESS && !p[9])
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSplitCapacity, kSliceEntries, kReorderWindow, 0, 1, kSettleFragments}, p[9]);
+  if (res == TVK_SUCCESS && !p[10])
+    res = make_compute(ctx, s.layout, k_spv_fine_comp,
+                       {kSplitCapacity, kSliceEntries, kReorderWindow, 1, 1, kSettleFragments}, p[10]);
   return res;
 }
 
@@ -215,7 +225,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   const uint64_t pixels = uint64_t{width} * height;
   const uint64_t tiles = uint64_t{(width + kTile - 1) / kTile} * ((height + kTile - 1) / kTile);
   const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(12 * segments, 1u << 20), max_range / 8);
-  if (32 * vertices > max_range || 8 * pixels > max_range || 16 * tiles > max_range)
+  if (32 * vertices > max_range || 8 * pixels > max_range || 24 * tiles > max_range)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
                     "tressvk_cmd_raster_hair: %llu strand vertices or a %ux%u view exceed the device's storage "
                     "buffer range (%llu bytes)",
@@ -223,14 +233,26 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
                     static_cast<unsigned long long>(max_range));
   TvkResult res = grow(ctx, s.verts, std::max<uint64_t>((per_fragment ? 64 : 32) * vertices, 64), storage, Memory::device,
                        "hair compute vertices");
-  if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, 16 * tiles, storage, Memory::device, "hair compute tiles");
+  if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, 24 * tiles, storage, Memory::device, "hair compute tiles");
   if (res == TVK_SUCCESS && s.entry_capacity < capacity) {
     res = grow(ctx, s.entries, 8 * capacity, storage, Memory::device, "hair compute tile entries");
     if (res == TVK_SUCCESS) s.entry_capacity = static_cast<uint32_t>(capacity);
   }
+  // Split work items: enough for the entry capacity in shares of kSplit plus 1,024 (a tile's last share is partial).
+  const uint64_t slots = std::min<uint64_t>(kSplitSlots, capacity / kSplit + 1024);
+  if (res == TVK_SUCCESS)
+    res = grow(ctx, s.split_items, 8 * (2 + slots), storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, Memory::device,
+               "hair compute split items");
+  if (res == TVK_SUCCESS && s.split_slots < slots) {
+    res = grow(ctx, s.partials, 8 * 64 * slots, storage, Memory::device, "hair compute partial layers");
+    if (res == TVK_SUCCESS) s.split_slots = static_cast<uint32_t>(slots);
+  }
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.counters, 4 * kCounterCount, storage, Memory::device, "hair compute counters");
-  if (res == TVK_SUCCESS) res = grow(ctx, s.image, 8 * pixels + 16, storage, Memory::device, "hair compute layer");
+  // The layer, then the composite's VkDrawIndirectCommand and its list of tiles with hair (fine.comp).
+  if (res == TVK_SUCCESS)
+    res = grow(ctx, s.image, 8 * pixels + 16 + 8 * tiles, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+               Memory::device, "hair compute layer");
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.dom, 4ull * kDomSize * kDomSize * (1 + kDomLayers), storage, Memory::device,
                "hair deep opacity map");
@@ -255,7 +277,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
 
 uint64_t memory_bytes(const State& s) {
   return s.verts.size + s.tiles.size + s.entries.size + s.counters.size + s.image.size + s.capture_depth.size +
-         s.dom.size + s.shadow_depth.size;
+         s.dom.size + s.shadow_depth.size + s.split_items.size + s.partials.size;
 }
 
 void destroy(TvkRenderer_T& r) {
@@ -274,7 +296,7 @@ void destroy(TvkRenderer_T& r) {
   if (s.set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.set_layout, c.info.allocator);
   if (s.composite_set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.composite_set_layout, c.info.allocator);
   if (s.sampler) c.vk.vkDestroySampler(dev, s.sampler, c.info.allocator);
-  for (GpuBuffer* b : {&s.shadow_depth, &s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
+  for (GpuBuffer* b : {&s.split_items, &s.partials, &s.shadow_depth, &s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
                        &s.capture_verts, &s.capture_host_depth, &s.capture_image})
     destroy_buffer(c, *b);
   delete r.compute;

@@ -68,12 +68,13 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
 
   const uint32_t n = dc.counts[0];
   const uint64_t segments = uint64_t{drawn} * (n - 1);
-  const Push push{{width, height, 0, 0}, {0, drawn, 0, static_cast<uint32_t>(segments)}};
+  const Push push{{width, height, 0, 0}, {0, drawn, 0, static_cast<uint32_t>(segments)}, {}};
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
   region.imageExtent = {width, height, 1};
   // The previous frame's copies used the buffer; then the map into it, the hair on top, and back.
   const uint32_t timed = ctx.time_begin(cmd);  // the whole call: copy out, hair depth, copy back
+  uint32_t part = ctx.time_begin(cmd);         // and each of the three
   memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   ctx.vk.vkCmdCopyImageToBuffer(cmd, info->shadow_image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, s.shadow_depth.buffer,
@@ -95,6 +96,8 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &ib;
   ctx.vk.vkCmdPipelineBarrier2(cmd, &dep);
+  ctx.time_end(cmd, part, "render.shadow_copy_out");
+  part = ctx.time_begin(cmd);
   memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
           VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -104,8 +107,11 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
   ctx.vk.vkCmdDispatch(cmd, std::max<uint32_t>(1, static_cast<uint32_t>((segments + 63) / 64)), 1, 1);
   memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  ctx.time_end(cmd, part, "render.shadow_hair");
+  part = ctx.time_begin(cmd);
   ctx.vk.vkCmdCopyBufferToImage(cmd, s.shadow_depth.buffer, info->shadow_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                 1, &region);
+  ctx.time_end(cmd, part, "render.shadow_copy_back");
   ctx.time_end(cmd, timed, "render.shadow");
   r.last_drawn_strands = drawn;
   return TVK_SUCCESS;

@@ -12,16 +12,19 @@ namespace tressvk::render::compute {
 
 enum Binding : uint32_t {
   kConstants = 0, kPositions = 1, kTangents = 2, kGuideInfo = 3, kAnchors = 4, kShadowMap = 5, kHostDepth = 6,
-  kVerts = 7, kTiles = 8, kEntries = 9, kCounters = 10, kImage = 11, kCapture = 12, kDom = 13, kBindingCount = 14
+  kVerts = 7, kTiles = 8, kEntries = 9, kCounters = 10, kImage = 11, kCapture = 12, kDom = 13, kSplitItems = 14,
+  kPartials = 15, kBindingCount = 16
 };
 
 enum class Pass : uint32_t {
-  vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, fine_per_fragment, pass_count
+  vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, fine_per_fragment, fine_split,
+  fine_split_per_fragment, pass_count
 };
 
 struct Push {
   uint32_t size[4];    // width, height, tiles x, tiles y
   uint32_t params[4];  // entry capacity, strands drawn, flags, segments
+  uint32_t split[4];   // split work item slots, unused x 3
 };
 
 constexpr uint32_t kTile = 8;
@@ -30,6 +33,15 @@ constexpr uint32_t kTile = 8;
 constexpr uint32_t kSliceCapacity = 256;
 constexpr uint32_t kSliceEntries = 64;
 constexpr uint32_t kReorderWindow = 4;
+// fine.comp: covering fragments a pixel still takes once opaque, so the window can put a nearer later one first.
+constexpr uint32_t kSettleFragments = 4;
+// Over-full tiles (raster_layout.glsl): more than kSplitAt entries are composited by ceil(count / kSplit)
+// workgroups of the split pass, which holds kSplitCapacity entries in shared memory (one load for a share of
+// kSplit entries); at most kSplitSlots work items per call (a tile that does not fit stays whole).
+constexpr uint32_t kSplitAt = 2048;
+constexpr uint32_t kSplit = 1024;
+constexpr uint32_t kSplitCapacity = 1024;
+constexpr uint32_t kSplitSlots = 65535;
 constexpr uint32_t kCounterCount = 8;
 constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster_layout.glsl)
 constexpr uint32_t kDomLayers = 4;
@@ -53,7 +65,9 @@ struct State {
   GpuBuffer shadow_depth;
 
   GpuBuffer verts, tiles, entries, counters, image, capture_depth, dom;
+  GpuBuffer split_items, partials;  // over-full tiles' work items (and the split pass's dispatch), partial layers
   uint32_t entry_capacity = 0;
+  uint32_t split_slots = 0;     // capacity of `partials` in work items
   uint32_t image_pixels = 0;    // capacity of `image` in pixels
   uint32_t width = 0, height = 0;  // of the last raster call (the composite draws this)
   GpuBuffer stats_readback;     // counters of the last call
