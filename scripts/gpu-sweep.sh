@@ -3,7 +3,7 @@
 #
 #   scripts/gpu-sweep.sh OUTDIR [BINDIR]
 #
-# BINDIR holds tressvk-bench and libtressvk.so.0 (default: build/portable). Runs, on the first GPU:
+# BINDIR holds tressvk-bench and libtressvk.so.0 (default: build/portable/{engine,plugin}). Runs, on the first GPU:
 #   1. `tressvk-bench hardcases` -> OUTDIR/hardcases.md (the table) and hardcases.json;
 #   2. `tressvk-bench sweep` over step rate x local iterations x length iterations x vertices per strand on settle,
 #      shake, run and wind -> OUTDIR/sweep.csv, sweep.json (SWEEP_ARGS replaces the grid options, e.g.
@@ -14,14 +14,8 @@
 set -euo pipefail
 OUT=${1:?usage: gpu-sweep.sh OUTDIR [BINDIR]}
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-BIN=${2:-$ROOT/build/portable}
-if [ -x "$BIN/tressvk-bench" ]; then
-  BENCH="$BIN/tressvk-bench"
-  export LD_LIBRARY_PATH="$BIN:${LD_LIBRARY_PATH:-}"
-else
-  BENCH="$BIN/engine/tressvk-bench"
-  export LD_LIBRARY_PATH="$BIN/plugin:${LD_LIBRARY_PATH:-}"
-fi
+. "$ROOT/scripts/gpu-tools.sh"
+gpu_tools "$ROOT" "${2:-}"
 mkdir -p "$OUT"
 
 echo "== hard cases"
