@@ -111,68 +111,67 @@ HardCase scaled_case(double s) {
   return c;
 }
 
+// A case of a groom in a scene at the default settings, judged by the default criteria.
+HardCase basic(std::string name, std::string setup, asset::HairAsset groom,
+               std::function<TvkSimFrame(uint32_t, const reference::SceneGeometry&)> frame_of = {},
+               uint32_t frames = 60) {
+  HardCase c;
+  c.name = std::move(name);
+  c.setup = std::move(setup);
+  c.groom = std::move(groom);
+  c.frame_of = std::move(frame_of);
+  c.frames = frames;
+  return c;
+}
+
 }  // namespace
 
 std::vector<HardCase> hard_cases() {
   std::vector<HardCase> out;
   {
-    HardCase c;
-    c.name = "stiff strands";
-    c.setup = "curly 16 x 32, local stiffness 1, global stiffness 1, 8 local iterations, shake";
-    c.groom = builtin("curly", 16);
+    HardCase c = basic("stiff strands",
+                       "curly 16 x 32, local stiffness 1, global stiffness 1, 8 local iterations, shake",
+                       builtin("curly", 16));
     c.params.local_stiffness = 1.0f;
     c.params.global_stiffness = 1.0f;
     c.params.local_iterations = 8;
     c.frame_of = scene("shake");
     out.push_back(std::move(c));
   }
-  {
-    HardCase c;
-    c.name = "128-vertex strands";
-    c.setup = "long128 8 x 128 (0.5 m), run (capsules for head and shoulders)";
-    c.groom = builtin("long128", 8);
-    c.frame_of = scene("run");
-    out.push_back(std::move(c));
+  // Grooms in a scene at the default settings ("helices": tight_curls, otherwise a built-in groom).
+  struct Plain {
+    const char* name;
+    const char* setup;
+    const char* groom;
+    uint32_t guides;
+    const char* scene;
+    uint32_t frames;
+  };
+  const Plain plain[] = {
+      {"128-vertex strands", "long128 8 x 128 (0.5 m), run (capsules for head and shoulders)", "long128", 8, "run", 60},
+      {"tight curls", "12 helices of radius 4 mm, pitch 8 mm, 64 vertices (8.5 per turn), shake", "helices", 12,
+       "shake", 60},
+      {"frame hitch", "curly 16 x 32, hitch (frames alternate 1/60 s and 0.25 s while the head turns and walks)",
+       "curly", 16, "hitch", 60},
+      {"teleport", "straight 16 x 32, teleport (a 1 m, 90 degree jump flagged as a teleport at frame 60)", "straight",
+       16, "teleport", 72},
+  };
+  for (const Plain& c : plain) {
+    asset::HairAsset groom = std::string(c.groom) == "helices" ? tight_curls(c.guides) : builtin(c.groom, c.guides);
+    out.push_back(basic(c.name, c.setup, std::move(groom), scene(c.scene), c.frames));
   }
   {
-    HardCase c;
-    c.name = "tight curls";
-    c.setup = "12 helices of radius 4 mm, pitch 8 mm, 64 vertices (8.5 per turn), shake";
-    c.groom = tight_curls(12);
-    c.frame_of = scene("shake");
-    out.push_back(std::move(c));
-  }
-  {
-    HardCase c;
-    c.name = "frame hitch";
-    c.setup = "curly 16 x 32, hitch (frames alternate 1/60 s and 0.25 s while the head turns and walks)";
-    c.groom = builtin("curly", 16);
-    c.frame_of = scene("hitch");
-    out.push_back(std::move(c));
-  }
-  {
-    HardCase c;
-    c.name = "teleport";
-    c.setup = "straight 16 x 32, teleport (a 1 m, 90 degree jump flagged as a teleport at frame 60)";
-    c.groom = builtin("straight", 16);
-    c.frames = 72;
-    c.frame_of = scene("teleport");
-    out.push_back(std::move(c));
-  }
-  {
-    HardCase c;
-    c.name = "fast head motion";
-    c.setup = "curly 16 x 32, the shake script at 3x speed (+-60 degrees at 6 Hz)";
-    c.groom = builtin("curly", 16);
+    HardCase c = basic("fast head motion",
+                       "curly 16 x 32, the shake script at 3x speed (+-60 degrees at 6 Hz)",
+                       builtin("curly", 16));
     // Frame f shows the shake script's pose of frame 3f + 2 (its motion 3x as fast), each frame still 1/60 s long.
     c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) { return reference::scene_frame("shake", 3 * f + 2, g); };
     out.push_back(std::move(c));
   }
   {
-    HardCase c;
-    c.name = "10 km from the origin";
-    c.setup = "straight 16 x 32, far (shake 10 km along +X)";
-    c.groom = builtin("straight", 16);
+    HardCase c = basic("10 km from the origin",
+                       "straight 16 x 32, far (shake 10 km along +X)",
+                       builtin("straight", 16));
     c.frame_of = scene("far");
     c.against = ModelErrorAgainst::kShake;
     c.reference_scene = "shake";
@@ -181,30 +180,25 @@ std::vector<HardCase> hard_cases() {
                         "and 100x grooms (float32 rounding grown along the trajectory; measured 2.9e-6 lavapipe, 3.5e-6 NVIDIA H100)";
     out.push_back(std::move(c));
   }
+  out.push_back(basic("zero-length and duplicate vertices",
+                      "straight 8 x 32 with segments of 0.1-0.2 um (a vertex next to its parent, a tip on its "
+                      "parent, a cluster of 4 vertices within 0.4 um), shake",
+                      near_duplicates(),
+                      scene("shake")));
   {
-    HardCase c;
-    c.name = "zero-length and duplicate vertices";
-    c.setup = "straight 8 x 32 with segments of 0.1-0.2 um (a vertex next to its parent, a tip on its parent, a "
-              "cluster of 4 vertices within 0.4 um), shake";
-    c.groom = near_duplicates();
-    c.frame_of = scene("shake");
-    out.push_back(std::move(c));
-  }
-  {
-    HardCase c;
-    c.name = "perfectly straight strands";
-    c.setup = "straight 16 x 32 (every frame's bend direction ill-defined), settle then shake";
-    c.groom = builtin("straight", 16);
+    HardCase c = basic("perfectly straight strands",
+                       "straight 16 x 32 (every frame's bend direction ill-defined), settle then shake",
+                       builtin("straight", 16));
     c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
       return reference::scene_frame(f < 20 ? "settle" : "shake", f < 20 ? f : f - 20, g);
     };
     out.push_back(std::move(c));
   }
   {
-    HardCase c;
-    c.name = "roots deep inside a collider";
-    c.setup = "curly 16 x 32, run with the head capsule's radius 1.25x the scalp's (roots 20 % of the radius inside)";
-    c.groom = builtin("curly", 16);
+    HardCase c = basic("roots deep inside a collider",
+                       "curly 16 x 32, run with the head capsule's radius 1.25x the scalp's (roots 20 % of the "
+                       "radius inside)",
+                       builtin("curly", 16));
     c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
       TvkSimFrame fr = reference::scene_frame("run", f, g);
       fr.capsules[0].r0 = fr.capsules[0].r1 = static_cast<float>(1.25 * g.head_radius);
@@ -213,10 +207,9 @@ std::vector<HardCase> hard_cases() {
     out.push_back(std::move(c));
   }
   {
-    HardCase c;
-    c.name = "extreme wind";
-    c.setup = "curly 16 x 32, wind of 100 m/s^2 (10 g) gusting +-80 % at 0.5 Hz";
-    c.groom = builtin("curly", 16);
+    HardCase c = basic("extreme wind",
+                       "curly 16 x 32, wind of 100 m/s^2 (10 g) gusting +-80 % at 0.5 Hz",
+                       builtin("curly", 16));
     c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
       TvkSimFrame fr = reference::scene_frame("wind", f, g);
       fr.wind.strength = 100.0f;
@@ -225,11 +218,10 @@ std::vector<HardCase> hard_cases() {
     out.push_back(std::move(c));
   }
   {
-    HardCase c;
-    c.name = "NaN/Inf in host transforms";
-    c.setup = "straight 8 x 32, run; frames 10-18 (even) carry a NaN translation, an Inf rotation, a NaN capsule end, "
-              "an Inf capsule radius and a NaN wind strength";
-    c.groom = builtin("straight", 8);
+    HardCase c = basic("NaN/Inf in host transforms",
+                       "straight 8 x 32, run; frames 10-18 (even) carry a NaN translation, an Inf rotation, a NaN "
+                       "capsule end, an Inf capsule radius and a NaN wind strength",
+                       builtin("straight", 8));
     c.frames = 30;
     c.frame_of = [](uint32_t f, const reference::SceneGeometry& g) {
       TvkSimFrame fr = reference::scene_frame("run", f, g);
@@ -248,10 +240,9 @@ std::vector<HardCase> hard_cases() {
     out.push_back(std::move(c));
   }
   {
-    HardCase c;
-    c.name = "strands pinned at both ends";
-    c.setup = "curly 8 x 32 with every other strand's tip pinned too (TressFX bothEndsImmovable), shake";
-    c.groom = builtin("curly", 8);
+    HardCase c = basic("strands pinned at both ends",
+                       "curly 8 x 32 with every other strand's tip pinned too (TressFX bothEndsImmovable), shake",
+                       builtin("curly", 8));
     const uint32_t n = c.groom.vertices_per_strand;
     for (uint32_t g = 0; g < c.groom.guide_count(); g += 2) c.groom.rest_positions[size_t{g} * n + n - 1][3] = 0.0f;
     c.frame_of = scene("shake");

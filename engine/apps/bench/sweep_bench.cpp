@@ -340,6 +340,7 @@ int execute_sweep_command(const SweepCommand& given) {
     dev.wait_idle();
     for (auto& [n, a] : timed_assets) tressvk_destroy_asset(a);
     tressvk_destroy_context(ctx);
+    if (cmd.validation) std::printf("validation: %llu message(s)\n", static_cast<unsigned long long>(dev.messages().count()));
     if (cmd.validation && dev.messages().count() > 0) {
       std::fprintf(stderr, "%s: %llu validation messages: nothing written\n", me,
                    static_cast<unsigned long long>(dev.messages().count()));
