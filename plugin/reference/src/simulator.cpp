@@ -11,6 +11,7 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
                      const TvkSimSettings& settings, const PlannerLimits& limits)
     : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
   set_params(group_params);
+  if (compliant_model_from_environment()) length_model_ = LengthModel::kCompliant;
   median_length_ = reference::median_strand_length(rest_);
   const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
   pos_.assign(n_all, Vec3{});
@@ -179,35 +180,12 @@ Quat Simulator::current_root_frame(const Substep& st, uint32_t g) const {
   return f;
 }
 
-// ---- The compliant model's constants (SimModel::kCompliant) ----------------------------------------------------------
-// Both are defined at the calibration point h0 = 1/240 s (the default step rate), where they reproduce the
-// follow-the-leader model's fractions, and turned into rates so that they mean the same at every step.
+// ---- The compliant model's constants (SimModel::kCompliant): tressvk::model (planner.hpp), shared with the plugin.
 namespace {
-constexpr double kCalibrationStep = 1.0 / 240.0;
-constexpr double kCalibrationSegments = 31.0;  // the bending stiffness is that of a 32-vertex strand's s
-// c: the factor that puts the cantilever's sag (L 0.2 m, 2 root vertices pinned, defaults) at the follow-the-leader
-// model's value at 240 Hz, 2 iterations, 32 vertices: 89.5 mm against 94.8 mm (tressvk_accuracy_probe cantilever).
-constexpr double kBendCalibration = 5.4;
-// The bending constraints' damping time tau (XPBD's Rayleigh term, gamma = tau / h: a time, so it means the same at
-// every step rate): the targets come from frames transported along the current edges, a follower load that flutters
-// (gains energy) at stiff settings without it: the cantilever never settles at 1-2 iterations, the curly rest pose
-// without gravity grows from rounding to 0.3 of its length in 2 s at 0.01 s, a 128-vertex strand at 0.5 s of an
-// alpha-proportional term. 0.1 s holds all of them at rounding level and leaves the static sag unchanged.
-constexpr double kBendDampingTime = 0.1;
-
-// Global shape: a spring of stiffness k (per unit mass) toward the skinned rest position, applied to the predicted
-// position as XPBD does (a fraction k h^2 / (1 + k h^2) of the way), with k chosen so that the fraction is s at h0:
-// k = s / ((1 - s) h0^2). h -> 0 gives the spring force k (goal - x); s = 1 pins (fraction 1 at every h).
 // The compliant length solve's safeguard (see length_and_collision).
 constexpr uint32_t kCompliantExtraNewton = 4;
 constexpr double kCompliantStretchTol = 1e-3;
-
-double compliant_global_fraction(double s, double h) {
-  if (!(s > 0.0)) return 0.0;
-  if (s >= 1.0) return 1.0;
-  const double kh2 = s / (1.0 - s) * (h * h) / (kCalibrationStep * kCalibrationStep);
-  return kh2 / (1.0 + kh2);
-}
+constexpr double kCalibrationSegments = 31.0;
 
 // Local shape: the dimensionless XPBD compliance alpha / h^2 of one edge's vector constraint C_v = x_{v+1} - x_v -
 // F_v e_v (unit mass per free vertex). Each constraint carries the shear load beyond it (lambda_v / h^2 = g times the
@@ -215,15 +193,12 @@ double compliant_global_fraction(double s, double h) {
 // tip of a horizontal strand sinks by g L^3 / (3 B) whatever N: B (m^3/s^2 per unit mass per length) is the strand's
 // shape stiffness, and its meaning does not change with N, h or the iteration count (the solve is exact). B per strand
 // from local_stiffness s: the compliance that removes the same fraction of an isolated edge's error per step as the
-// follow-the-leader model's two Gauss-Seidel iterations at h0 (1 - (1 - 2 s')^2, s' = 0.5 min(s, 0.95)), for the
-// strand's length divided into 31 edges, times c (kBendCalibration):
+// follow-the-leader model's two Gauss-Seidel iterations at h0 = 1/240 s (1 - (1 - 2 s')^2, s' = 0.5 min(s, 0.95)),
+// for the strand's length divided into 31 edges, times a calibration factor (planner.cpp):
 //   alpha / h^2 = c (2 / rho - 2) (31 a / L)^3 (h0 / h)^2.
 double compliant_bend_alpha(double s_step, double edge, double strand_length, double h) {
-  const double keep = 1.0 - 2.0 * s_step;
-  const double removed = 1.0 - keep * keep;
-  if (!(removed > 0.0)) return INFINITY;
   const double rel = kCalibrationSegments * edge / strand_length;
-  return kBendCalibration * (2.0 / removed - 2.0) * (rel * rel * rel) * (kCalibrationStep * kCalibrationStep) / (h * h);
+  return compliant_bend_alpha_base(s_step, h) * (rel * rel * rel);
 }
 }  // namespace
 
@@ -380,7 +355,7 @@ void Simulator::local_shape_compliant(const Substep& st) {
           const double at = compliant_bend_alpha(gp.local_stiffness, rest_.rest_length[b + v], rest_.strand_length[g], st.h);
           const Vec3 c = pos_[b + v + 1] - pos_[b + v] - quat_rotate(frames_[v], rest_.rest_edge_local[b + v]);
           // The damping term (XPBD): gamma on the constraint's change over the step, (1 + gamma) on D W D^T.
-          const double gm = kBendDampingTime / st.h;
+          const double gm = compliant_bend_damping(st.h);
           const Vec3 vel = (pos_[b + v + 1] - prev_[b + v + 1]) - (pos_[b + v] - prev_[b + v]);
           const double sub = v > 1 ? -(1.0 + gm) * wa : 0.0;
           const double sup = v + 2 < n ? -(1.0 + gm) * wb : 0.0;
@@ -563,7 +538,11 @@ void Simulator::length_and_collision(const Substep& st) {
     if (st.wind) {
       const double a = static_cast<double>(g % 20u) / 20.0;
       const Vec3 w = a * (st.wind_h2[0] + st.wind_h2[2]) + (1.0 - a) * (st.wind_h2[1] + st.wind_h2[3]);
-      for (uint32_t v = 1; v < n; ++v) {
+      // The compliant model walks from the tip, so that every segment's direction is the one before the wind (the
+      // lanes of its GPU kernel push all vertices at once); the other models from the root, each parent pushed.
+      const bool from_tip = length_model_ == LengthModel::kCompliant;
+      for (uint32_t k = 1; k < n; ++k) {
+        const uint32_t v = from_tip ? n - k : k;
         if (!movable(b + v)) continue;
         const Vec3 e = pos_[b + v] - pos_[b + v - 1];
         const double len = length(e);
