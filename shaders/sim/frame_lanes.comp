@@ -26,6 +26,7 @@ shared float s_b[LANES];
 shared float s_c[LANES];
 shared vec4 s_d[LANES];
 shared vec4 s_x[LANES];
+shared vec4 s_y[LANES];
 shared float s_red[LANES];
 
 uint tvk_frame_base;
@@ -79,6 +80,21 @@ vec3 lanes_tridiagonal(uint r, float a, float b, float c, vec3 d) {
     d = d2;
   }
   return d / b;
+}
+
+// The same with one step of iterative refinement: the residual of the first solution (in float, from the lanes'
+// neighbours) solved again and added. Parallel cyclic reduction's float error grows with the system's condition
+// (~N^2 for the weakly diagonally dominant length and shape systems) times the solution, which carries the strand's
+// whole load at low step rates; one refinement brings it back to rounding.
+vec3 lanes_tridiagonal_refined(uint r, float a, float b, float c, vec3 d) {
+  vec3 x = lanes_tridiagonal(r, a, b, c, d);
+  s_y[r] = vec4(x, 0.0);
+  barrier();
+  vec3 res = d - b * x;
+  if (r > 0u) res -= a * s_y[r - 1u].xyz;
+  if (r + 1u < LANES) res -= c * s_y[r + 1u].xyz;
+  barrier();
+  return x + lanes_tridiagonal(r, a, b, c, res);
 }
 
 float lanes_max(uint r, float x) {
@@ -159,7 +175,7 @@ void local_shape_lanes(uint g, uint b, uint v) {
         rd = -(c + at * lam + gm * vel);
       }
     }
-    vec3 dl = lanes_tridiagonal(v, ra, rb, rc, rd);
+    vec3 dl = lanes_tridiagonal_refined(v, ra, rb, rc, rd);
     s_x[v] = vec4(dl, 0.0);
     barrier();
     if (v >= 1u && v < N && s_pos[v].w > 0.0) {
@@ -192,7 +208,7 @@ void newton_lanes(uint b, uint v, inout vec3 move, inout float lam) {
       rc = v + 2u < N ? -wb * dot(gv, s_x[v + 1u].xyz) : 0.0;
     }
   }
-  float l = lanes_tridiagonal(v, ra, rb, rc, vec3(rd, 0.0, 0.0)).x;
+  float l = lanes_tridiagonal_refined(v, ra, rb, rc, vec3(rd, 0.0, 0.0)).x;
   s_red[v] = l;  // lanes_tridiagonal ended on a barrier; s_red is free
   barrier();
   vec3 dx = vec3(0.0);
@@ -239,7 +255,7 @@ void transverse_lanes(uint b, uint v, vec3 move, float lam) {
     rb = 1.0 + kl + kr;
   }
   barrier();
-  vec3 delta = lanes_tridiagonal(v, ra, rb, rc, rd);
+  vec3 delta = lanes_tridiagonal_refined(v, ra, rb, rc, rd);
   if (vert && s_pos[v].w > 0.0) s_pos[v] = vec4(s_pos[v].xyz + delta, s_pos[v].w);
   barrier();
 }
