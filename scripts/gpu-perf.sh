@@ -27,11 +27,31 @@ if [ ! -f "$MOHAWK" ] && [ -f "$RATBOY" ]; then
   "$BAKE" "$RATBOY" "${BONES[@]}" --follow 2 -o "$MOHAWK" > "$OUT/bake.log" 2>&1
 fi
 
-perf() {  # json name, path, then bench arguments
-  local name=$1 path=$2; shift 2
-  TRESSVK_SIM_PATH=$path timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||
+perf() {  # json name, path, then bench arguments; path "compliant" = the compliant model's lane-parallel kernel
+  local name=$1 path=$2 model=; shift 2
+  [ "$path" = compliant ] && { model=compliant; path=fused; }
+  TRESSVK_SIM_MODEL=$model TRESSVK_SIM_PATH=$path timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||
     echo "| $name | failed: $(tail -1 "$OUT/$name.err") |"
 }
+
+# MODELS=1: only the model table (follow-the-leader's fused kernel against the compliant model's lane-parallel kernel,
+# each with its step error against the reference of its own model), then stop.
+if [ "${MODELS:-0}" = 1 ]; then
+  T="--scene shake --frames 300 --warmup 60 --error-frames 2"
+  {
+    echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+    for rate in 60 240; do
+      for path in fused compliant; do
+        [ -f "$MOHAWK" ] && perf "models-ratboy-$path-$rate" "$path" --asset "$MOHAWK" --step-rate "$rate" $T
+        perf "models-curly1M-$path-$rate" "$path" --builtin curly --guides 32768 --step-rate "$rate" $T
+        perf "models-curly4M-$path-$rate" "$path" --builtin curly --guides 131072 --step-rate "$rate" $T
+      done
+    done
+  } | tee "$OUT/models.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
 
 # The issue's table: Ratboy mohawk + 2 follows, curly 32,768 x 32 (1M) and 131,072 x 32 (4M guide vertices), at 60
 # and 240 Hz, both paths (and the shared-memory variant of the frame kernel at 240 Hz).

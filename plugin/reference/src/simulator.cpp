@@ -11,6 +11,7 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
                      const TvkSimSettings& settings, const PlannerLimits& limits)
     : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
   set_params(group_params);
+  if (compliant_model_from_environment()) length_model_ = LengthModel::kCompliant;
   median_length_ = reference::median_strand_length(rest_);
   const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
   pos_.assign(n_all, Vec3{});
@@ -22,6 +23,9 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
   lam_.assign(rest_.vertices_per_strand, 0.0);
   move_.assign(rest_.vertices_per_strand, Vec3{});
   tdp_.assign(rest_.vertices_per_strand, Vec3{});
+  lam3_.assign(rest_.vertices_per_strand, Vec3{});
+  frame_dir_.assign(rest_.vertices_per_strand, Vec3{});
+  frames_.assign(rest_.vertices_per_strand, Quat{0, 0, 0, 1});
 }
 
 void Simulator::set_params(std::span<const TvkSimParams> group_params) {
@@ -94,7 +98,13 @@ void Simulator::simulate(const FramePlan& plan) {
     }
     integrate(st);
     if (any_vsp) vsp(st);
-    if (any_local) local_shape(st);
+    if (any_local) {
+      if (length_model_ == LengthModel::kCompliant) {
+        local_shape_compliant(st);
+      } else {
+        local_shape(st);
+      }
+    }
     length_and_collision(st);
   }
   if (!plan.steps.empty() && rest_.follow_per_guide > 0) follow(plan.steps.back());
@@ -170,6 +180,28 @@ Quat Simulator::current_root_frame(const Substep& st, uint32_t g) const {
   return f;
 }
 
+// ---- The compliant model's constants (SimModel::kCompliant): tressvk::model (planner.hpp), shared with the plugin.
+namespace {
+// The compliant length solve's safeguard (see length_and_collision).
+constexpr uint32_t kCompliantExtraNewton = 4;
+constexpr double kCompliantStretchTol = 1e-3;
+constexpr double kCalibrationSegments = 31.0;
+
+// Local shape: the dimensionless XPBD compliance alpha / h^2 of one edge's vector constraint C_v = x_{v+1} - x_v -
+// F_v e_v (unit mass per free vertex). Each constraint carries the shear load beyond it (lambda_v / h^2 = g times the
+// vertices beyond v, at rest), so with a per-edge compliance a^3 / B the angle at vertex v is a g (L - s) / B and the
+// tip of a horizontal strand sinks by g L^3 / (3 B) whatever N: B (m^3/s^2 per unit mass per length) is the strand's
+// shape stiffness, and its meaning does not change with N, h or the iteration count (the solve is exact). B per strand
+// from local_stiffness s: the compliance that removes the same fraction of an isolated edge's error per step as the
+// follow-the-leader model's two Gauss-Seidel iterations at h0 = 1/240 s (1 - (1 - 2 s')^2, s' = 0.5 min(s, 0.95)),
+// for the strand's length divided into 31 edges, times a calibration factor (planner.cpp):
+//   alpha / h^2 = c (2 / rho - 2) (31 a / L)^3 (h0 / h)^2.
+double compliant_bend_alpha(double s_step, double edge, double strand_length, double h) {
+  const double rel = kCalibrationSegments * edge / strand_length;
+  return compliant_bend_alpha_base(s_step, h) * (rel * rel * rel);
+}
+}  // namespace
+
 void Simulator::integrate(const Substep& st) {
   const size_t count = rest_.rest_pos.size();
   const uint32_t n = rest_.vertices_per_strand;
@@ -203,7 +235,9 @@ void Simulator::integrate(const Substep& st) {
       // The range test is a static decision; made on the float values the GPU compares, so both agree.
       if (gp.global_stiffness > 0.0 &&
           static_cast<float>(rest_.arc_fraction[i]) <= static_cast<float>(gp.global_range)) {
-        next += gp.global_stiffness * (goal - next);
+        next += (length_model_ == LengthModel::kCompliant ? compliant_global_fraction(gp.global_stiffness, st.h)
+                                                          : gp.global_stiffness) *
+                (goal - next);
       }
     } else {
       next = goal;
@@ -268,6 +302,82 @@ void Simulator::local_shape(const Substep& st) {
 }
 
 namespace {
+Vec3 constraint_direction(Vec3 d, Vec3 was, double rest);
+}  // namespace
+
+void Simulator::local_shape_compliant(const Substep& st) {
+  // SimModel::kCompliant's local shape (see simulator.hpp). Per iteration:
+  //  1. every edge's direction u_k from the current positions (blended with its previous-step direction when short
+  //     or folded: constraint_direction), every edge's minimal rotation R_k from the frame's X before it (u of the
+  //     last edge that turned the frame, or the root frame's X) onto u_k (identity where the frame does not turn),
+  //     and the frames F_v = R_{v-1} ... R_0 root as a prefix product (a scan over the lanes on the GPU);
+  //  2. the constraints C_v = x_{v+1} - x_v - F_v e_v (v = 1 .. n-2, e_v the rest edge in the rest frame) solved
+  //     together with the frames held: (D W D^T + at) dlambda = -(C + at lambda), a scalar tridiagonal system with
+  //     three right-hand sides (row v: (w_v + w_{v+1} + at_v) on the diagonal, -w_v and -w_{v+1} beside it; Thomas
+  //     here, parallel cyclic reduction over the lanes on the GPU), then x_v += w_v (dlambda_{v-1} - dlambda_v) and
+  //     lambda += dlambda (at_v: compliant_bend_alpha; w: 1 free, 0 pinned).
+  // The solve is exact, so the iterations only refresh the frames: the static sag does not depend on them.
+  const uint32_t n = rest_.vertices_per_strand;
+  for (uint32_t g = 0; g < rest_.guide_count; ++g) {
+    const GroupStep& gp = group_of(g);
+    if (gp.local_iterations == 0 || n < 3) continue;
+    const size_t b = size_t{g} * n;
+    const Quat root = quat_mul(skin_rotation(st, g), rest_.root_frame[g]);
+    const Vec3 root_x = quat_rotate(root, Vec3{1, 0, 0});
+    auto w = [&](uint32_t v) { return rest_.inv_mass[b + v] > 0.0 ? 1.0 : 0.0; };
+    for (uint32_t v = 0; v < n; ++v) lam3_[v] = Vec3{};
+    for (uint32_t it = 0; it < gp.local_iterations; ++it) {
+      // 1. Directions, then the prefix product of the minimal rotations.
+      for (uint32_t k = 0; k + 1 < n; ++k) {
+        frame_dir_[k] = constraint_direction(pos_[b + k + 1] - pos_[b + k], prev_[b + k + 1] - prev_[b + k],
+                                             rest_.rest_length[b + k]);
+      }
+      Quat f = root;
+      Vec3 x_before = root_x;
+      frames_[0] = root;
+      for (uint32_t v = 1; v + 1 < n; ++v) {
+        const uint32_t k = v - 1;  // the edge arriving at v
+        if (rest_.frame_turns[b + v] && dot(frame_dir_[k], frame_dir_[k]) > 0.0) {
+          f = normalize(quat_mul(quat_from_two_unit(x_before, frame_dir_[k]), f));
+          x_before = frame_dir_[k];
+        }
+        frames_[v] = f;
+      }
+      // 2. The tridiagonal solve (rows v = 1 .. n-2; c' in seg_cp_, d' in tdp_).
+      double cp_before = 0.0;
+      Vec3 dp_before{};
+      for (uint32_t v = 1; v + 1 < n; ++v) {
+        const double wa = w(v), wb = w(v + 1);
+        if (wa + wb == 0.0) {
+          seg_cp_[v] = 0.0;
+          tdp_[v] = Vec3{};
+        } else {
+          const double at = compliant_bend_alpha(gp.local_stiffness, rest_.rest_length[b + v], rest_.strand_length[g], st.h);
+          const Vec3 c = pos_[b + v + 1] - pos_[b + v] - quat_rotate(frames_[v], rest_.rest_edge_local[b + v]);
+          // The damping term (XPBD): gamma on the constraint's change over the step, (1 + gamma) on D W D^T.
+          const double gm = compliant_bend_damping(st.h);
+          const Vec3 vel = (pos_[b + v + 1] - prev_[b + v + 1]) - (pos_[b + v] - prev_[b + v]);
+          const double sub = v > 1 ? -(1.0 + gm) * wa : 0.0;
+          const double sup = v + 2 < n ? -(1.0 + gm) * wb : 0.0;
+          const double den = (1.0 + gm) * (wa + wb) + at - sub * cp_before;
+          seg_cp_[v] = sup / den;
+          tdp_[v] = (-1.0 * (c + at * lam3_[v] + gm * vel) - sub * dp_before) / den;
+        }
+        cp_before = seg_cp_[v];
+        dp_before = tdp_[v];
+      }
+      for (uint32_t v = n - 2; v-- > 1;) tdp_[v] -= seg_cp_[v] * tdp_[v + 1];
+      for (uint32_t v = 1; v < n; ++v) {
+        const Vec3 before = v >= 2 ? tdp_[v - 1] : Vec3{};
+        const Vec3 here = v + 1 < n ? tdp_[v] : Vec3{};
+        if (w(v) > 0.0) pos_[b + v] += before - here;
+      }
+      for (uint32_t v = 1; v + 1 < n; ++v) lam3_[v] += tdp_[v];
+    }
+  }
+}
+
+namespace {
 // The (unnormalised) direction a length constraint restores along: the segment d itself, except that a compressed or
 // flipped segment is blended with its direction at the previous step (was) by the missing length (and the fold
 // guard), which stays defined as the segment vanishes (normalize(d) would not). GLSL twin: length.comp.
@@ -307,7 +417,7 @@ void Simulator::solve_lengths(size_t b) {
     // The Newmark model moves along the gradient (a projection; implicit_transverse then moves the transverse
     // response to the average-acceleration rule); the follow-the-leader model's tip-pinned solve along the direction
     // midway between the start of the step and now.
-    if (length_model_ == LengthModel::kNewmark) return g;
+    if (length_model_ != LengthModel::kFollowTheLeader) return g;
     const Vec3 mid = constraint_direction(0.5 * (d + was), was, rest_.rest_length[b + v]);
     return dot(g, mid) > 0.5 ? mid : g;
   };
@@ -324,7 +434,7 @@ void Simulator::solve_lengths(size_t b) {
     }
     const double wa = w(v), wb = w(v + 1);
     // A segment with no defined direction (g = 0: vanished, with no history) has no row: lambda = 0.
-    const bool active = wa + wb > 0.0 && (length_model_ != LengthModel::kNewmark || dot(g_here, m_here) > 0.25);
+    const bool active = wa + wb > 0.0 && (length_model_ == LengthModel::kFollowTheLeader || dot(g_here, m_here) > 0.25);
     const double diag = active ? (wa + wb) * dot(g_here, m_here) : 1.0;
     const double c = active ? dot(pos_[b + v + 1] - pos_[b + v], g_here) - rest_.rest_length[b + v] : 0.0;
     const double sub = active && v > 0 ? -wa * dot(g_here, m_before) : 0.0;
@@ -428,7 +538,11 @@ void Simulator::length_and_collision(const Substep& st) {
     if (st.wind) {
       const double a = static_cast<double>(g % 20u) / 20.0;
       const Vec3 w = a * (st.wind_h2[0] + st.wind_h2[2]) + (1.0 - a) * (st.wind_h2[1] + st.wind_h2[3]);
-      for (uint32_t v = 1; v < n; ++v) {
+      // The compliant model walks from the tip, so that every segment's direction is the one before the wind (the
+      // lanes of its GPU kernel push all vertices at once); the other models from the root, each parent pushed.
+      const bool from_tip = length_model_ == LengthModel::kCompliant;
+      for (uint32_t k = 1; k < n; ++k) {
+        const uint32_t v = from_tip ? n - k : k;
         if (!movable(b + v)) continue;
         const Vec3 e = pos_[b + v] - pos_[b + v - 1];
         const double len = length(e);
@@ -493,7 +607,29 @@ void Simulator::length_and_collision(const Substep& st) {
       if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
       if (dftl && wa == 0.0 && wb > 0.0 && movable(b + v)) prev_[b + v] -= kFtlVelocityCorrection * corr;
     };
-    if (length_model_ == LengthModel::kNewmark) {
+    if (length_model_ == LengthModel::kCompliant) {
+      // SimModel::kCompliant: the Newmark model's Newton step and implicit transverse response, then
+      // length_iterations more Newton steps (projections of what the transverse solve moved); every step a tridiagonal solve over the strand (parallel cyclic
+      // reduction over the lanes on the GPU), and no serial clean-up: what the linearisation leaves is second order in
+      // the step's move and the next step's solve starts from it.
+      std::fill(move_.begin(), move_.end(), Vec3{});
+      std::fill(lam_.begin(), lam_.end(), 0.0);
+      solve_lengths(b);
+      implicit_transverse(b, 0.25);
+      for (uint32_t it = 0; it < gp.length_iterations; ++it) solve_lengths(b);
+      // Violent motion (a damped Newton step, a whipping tip): up to kCompliantExtraNewton more steps while any
+      // segment is off its length by more than kCompliantStretchTol (a reduction over the strand's lanes on the GPU).
+      for (uint32_t extra = 0; extra < kCompliantExtraNewton; ++extra) {
+        double worst = 0.0;
+        for (uint32_t v = 0; v + 1 < n; ++v) {
+          if (!movable(b + v) && !movable(b + v + 1)) continue;
+          const double rest = rest_.rest_length[b + v];
+          worst = std::max(worst, std::abs(length(pos_[b + v + 1] - pos_[b + v]) - rest) / rest);
+        }
+        if (!(worst > kCompliantStretchTol)) break;
+        solve_lengths(b);
+      }
+    } else if (length_model_ == LengthModel::kNewmark) {
       // LengthModel::kNewmark (opt-in, not yet the default: see simulator.hpp). Every strand alike:
       // a Newton step of the whole strand's constraint system (solve_lengths: a tridiagonal solve moving each vertex
       // along the constraint gradients; no velocity correction, so p - q stays the velocity), its transverse response

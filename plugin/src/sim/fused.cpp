@@ -23,6 +23,10 @@ const PassInfo kFramePrivate = {PassId::kFrame, "frame", k_spv_frame_comp, sizeo
 const PassInfo kFrameShared = {PassId::kFrame, "frame", k_spv_frame_shared_comp, sizeof(k_spv_frame_shared_comp),
                                Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites,
                                kFrameFeatures, true};
+const PassInfo kFrameLanes = {PassId::kFrame, "frame", k_spv_frame_lanes_comp, sizeof(k_spv_frame_lanes_comp),
+                              Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites,
+                              kFrameFeatures, true};
+constexpr uint32_t kLanesVariantBit = 1u << 14;
 // Not a shader feature: keeps the two variants' pipelines apart in the context's pipeline cache (FEATURES ignores it).
 constexpr uint32_t kSharedVariantBit = 1u << 15;  // below bit 16: the cache key puts capsules at bit 48
 
@@ -60,5 +64,21 @@ PassUse frame_pass_use(const SceneTerms& terms, bool shared) {
 }
 
 uint32_t frame_dispatch_groups(uint32_t guide_count) { return (guide_count + kStrandBlock - 1) / kStrandBlock; }
+
+PassUse frame_lanes_pass_use(const SceneTerms& terms) {
+  PassUse use = frame_pass_use(terms, false);
+  use.info = &kFrameLanes;
+  use.features |= kLanesVariantBit;
+  use.name = "frame(lanes)" + use.name.substr(5);
+  return use;
+}
+
+bool is_frame_lanes(const PassInfo* info) { return info == &kFrameLanes; }
+
+uint32_t frame_lanes_workgroup(uint32_t vertices_per_strand) {
+  uint32_t lanes = 32;
+  while (lanes < vertices_per_strand) lanes *= 2;
+  return lanes;
+}
 
 }  // namespace tressvk::sim

@@ -29,4 +29,11 @@ PassUse frame_pass_use(const SceneTerms& terms, bool shared);
 // Workgroups of the frame pass: one per strand block of 32 guides.
 uint32_t frame_dispatch_groups(uint32_t guide_count);
 
+// The compliant model's lane-parallel frame kernel (frame_lanes.comp, TRESSVK_SIM_MODEL=compliant): one workgroup
+// per guide, one lane per vertex. It records as the frame pass (PassId::kFrame) with its own pipeline.
+PassUse frame_lanes_pass_use(const SceneTerms& terms);
+bool is_frame_lanes(const PassInfo* info);
+// Its workgroup size for N vertices per strand: the power of two >= N, at least 32 (WORKGROUP_SIZE).
+uint32_t frame_lanes_workgroup(uint32_t vertices_per_strand);
+
 }  // namespace tressvk::sim

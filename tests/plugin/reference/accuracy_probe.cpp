@@ -8,6 +8,9 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <tressvk/baker/import.hpp>
+#include <tressvk/baker/procedural.hpp>
+
 #include "analytic.hpp"
 #include "helpers.hpp"
 
@@ -36,10 +39,27 @@ double cantilever_sag(uint32_t n, double rate, uint32_t iterations) {
   for (uint32_t v = 0; v < n; ++v) pts.push_back({0.2 * v / (n - 1), 0, 0});
   TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
   p.local_iterations = iterations;
+  if (const char* e = std::getenv("TVK_DAMP")) p.damping = static_cast<float>(std::atof(e));
   auto run = reference_factory(g_model)(strand_asset(pts, 2), p, settings_at(rate));
   for (uint32_t f = 0; f < 600; ++f) run->frame(still_frame());
   const std::vector<Vec3> x = run->positions();
   return x.front().y - x.back().y;
+}
+
+void cantilever_trace(uint32_t n, double rate, uint32_t iterations) {
+  std::vector<Vec3> pts;
+  for (uint32_t v = 0; v < n; ++v) pts.push_back({0.2 * v / (n - 1), 0, 0});
+  TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
+  p.local_iterations = iterations;
+  if (const char* e = std::getenv("TVK_DAMP")) p.damping = static_cast<float>(std::atof(e));
+  auto run = reference_factory(g_model)(strand_asset(pts, 2), p, settings_at(rate));
+  for (uint32_t f = 0; f < 600; ++f) {
+    run->frame(still_frame());
+    const std::vector<Vec3> x = run->positions();
+    double worst = 0;
+    for (size_t i = 0; i + 1 < x.size(); ++i) worst = std::max(worst, std::abs(length(x[i + 1] - x[i]) / (0.2 / (n - 1)) - 1));
+    if (f % 30 == 0) std::printf("%u %.4f tip %.5f %.5f stretch %.2e\n", f, f / 60.0, x.back().x, x.back().y, worst);
+  }
 }
 
 void cantilever() {
@@ -102,10 +122,61 @@ void rest() {
   }
 }
 
+// The look of the grooms at the defaults: every built-in groom (64 guides x 32) and, when TVK_RATBOY names
+// Ratboy_mohawk.tfx, the Ratboy mohawk (bones from the .tfxbone beside it, baked as tressvk-bake does by default),
+// settled 5 s (settle scene, gravity on) on the follow-the-leader and the compliant model: the distance between the two
+// settled shapes (rms and max over the guide vertices, / median strand length) and each one's mean tip drop below its
+// rest tip (/ median length).
+void looks() {
+  std::printf("groom,guides,rms_rel,max_rel,tip_drop_ftl_rel,tip_drop_compliant_rel\n");
+  std::vector<std::pair<std::string, tressvk::asset::HairAsset>> grooms;
+  for (const std::string& name : tressvk::baker::builtin_groom_names()) grooms.emplace_back(name, tvk_test::groom(name, 64));
+  if (const char* path = std::getenv("TVK_RATBOY")) {
+    tressvk::baker::RawGroom raw = tressvk::baker::import_file(path);
+    std::string bones = path;
+    bones = bones.substr(0, bones.size() - 4) + ".tfxbone";
+    if (std::FILE* f = std::fopen(bones.c_str(), "rb")) {
+      std::fclose(f);
+      tressvk::baker::apply_tfxbone(raw, bones);
+    }
+    grooms.emplace_back("ratboy", tressvk::baker::bake(raw, tressvk::baker::BakeOptions{}));
+  }
+  for (const auto& [name, a] : grooms) {
+    std::vector<Vec3> settled[2];
+    double drop[2] = {0, 0}, median = 0;
+    for (int m = 0; m < 2; ++m) {
+      tressvk::reference::Simulator sim = tvk_test::make_sim(a);
+      sim.set_model(m == 0 ? LengthModel::kFollowTheLeader : LengthModel::kCompliant);
+      const auto geo = tressvk::reference::scene_geometry(sim.rest());
+      tressvk::reference::FramePlan plan;
+      for (uint32_t f = 0; f < 300; ++f) plan = sim.advance(tressvk::reference::scene_frame("settle", f, geo));
+      const uint32_t n = sim.rest().vertices_per_strand;
+      const size_t count = sim.rest().rest_pos.size();
+      settled[m].assign(sim.positions().begin(), sim.positions().begin() + static_cast<std::ptrdiff_t>(count));
+      for (size_t g = 0; g < count / n; ++g) {
+        const size_t tip = g * n + n - 1;
+        drop[m] += sim.skinned_rest(plan.steps.back(), tip).y - settled[m][tip].y;
+      }
+      drop[m] /= static_cast<double>(count / n);
+      median = sim.median_strand_length();
+    }
+    double sum = 0, worst = 0;
+    for (size_t i = 0; i < settled[0].size(); ++i) {
+      const double d = length(settled[0][i] - settled[1][i]);
+      sum += d * d;
+      worst = std::max(worst, d);
+    }
+    std::printf("%s,%zu,%.4f,%.4f,%.4f,%.4f\n", name.c_str(), settled[0].size() / a.vertices_per_strand,
+                std::sqrt(sum / static_cast<double>(settled[0].size())) / median, worst / median, drop[0] / median,
+                drop[1] / median);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "newmark") == 0) g_model = LengthModel::kNewmark;
+  if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "compliant") == 0) g_model = LengthModel::kCompliant;
   for (int i = 1; i < argc || argc == 1; ++i) {
     const char* what = argc == 1 ? "all" : argv[i];
     const bool all = std::strcmp(what, "all") == 0;
@@ -113,6 +184,12 @@ int main(int argc, char** argv) {
     if (all || std::strcmp(what, "cantilever") == 0) cantilever();
     if (all || std::strcmp(what, "convergence") == 0) convergence();
     if (std::strcmp(what, "rest") == 0) rest();
+    if (std::strcmp(what, "looks") == 0) looks();
+    if (std::strcmp(what, "trace") == 0) {
+      cantilever_trace(static_cast<uint32_t>(std::atoi(argv[i + 1])), std::atof(argv[i + 2]),
+                       static_cast<uint32_t>(std::atoi(argv[i + 3])));
+      return 0;
+    }
     if (argc == 1) break;
   }
   return 0;

@@ -228,6 +228,20 @@ inline RunFactory reference_factory(LengthModel model = LengthModel::kFollowTheL
   };
 }
 
+// A8. The cantilever: a horizontal strand (L 0.2 m along +x, 2 root vertices pinned, default parameters but
+// `iterations` local iterations and damping 0.5 so that it settles) after 10 s under gravity: its tip's sag, m.
+inline double cantilever_sag(const RunFactory& make, uint32_t n, double rate, uint32_t iterations) {
+  std::vector<Vec3> pts;
+  for (uint32_t v = 0; v < n; ++v) pts.push_back({0.2 * v / (n - 1), 0, 0});
+  TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
+  p.local_iterations = iterations;
+  p.damping = 0.5f;
+  auto run = make(strand_asset(pts, 2), p, settings_at(rate));
+  for (uint32_t f = 0; f < 600; ++f) run->frame(still_frame());
+  const std::vector<Vec3> x = run->positions();
+  return x.front().y - x.back().y;
+}
+
 // Upward zero crossings of a sampled signal (linear interpolation), after subtracting its mean.
 // ---- The analytic scenarios the reference and the GPU both run (test_analytic.cpp, ../analytic_test.cpp) ---------
 

@@ -23,6 +23,13 @@ using namespace tvk_test;
 
 namespace {
 // Parameter overrides for experiments: PROBE_VSP, PROBE_LOCAL (stiffness), PROBE_GLOBAL (stiffness).
+// PROBE_RATE overrides the step rate (Hz).
+TvkSimSettings probe_settings() {
+  TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  if (const char* e = std::getenv("PROBE_RATE")) s.time.step_rate = std::strtof(e, nullptr);
+  return s;
+}
+
 TvkSimParams probe_params() {
   TvkSimParams p = default_params();
   if (const char* e = std::getenv("PROBE_VSP")) p.vsp_coefficient = std::strtof(e, nullptr);
@@ -59,7 +66,7 @@ int main(int argc, char** argv) {
   for (int i = arg + 1; i < argc; ++i) scenes.emplace_back(argv[i]);
   if (scenes.empty()) scenes = scene_names();
   for (const std::string& scene : scenes) {
-    Simulator a = make_sim(hair, probe_params()), b = make_sim(hair, probe_params());
+    Simulator a = make_sim(hair, probe_params(), probe_settings()), b = make_sim(hair, probe_params(), probe_settings());
     const SceneGeometry geo = scene_geometry(a.rest());
     const double median = a.median_strand_length();
     std::mt19937 rng(7);
@@ -128,7 +135,7 @@ int main(int argc, char** argv) {
     if (std::getenv("PROBE_PASSES") != nullptr) {
       // Replay to the worst frame twice (clean, and with the same 1-ulp jitter), then step the passes one by one
       // and print the largest response after each: where the model amplifies.
-      Simulator c = make_sim(hair, probe_params());
+      Simulator c = make_sim(hair, probe_params(), probe_settings());
       for (uint32_t f = 0; f < worst_frame; ++f) c.advance(scene_frame(scene, f, geo));
       std::mt19937 rng2(11);
       auto pack2 = [&](std::span<const Vec3> s2, bool jitter) {
@@ -191,7 +198,7 @@ int main(int argc, char** argv) {
     const auto st = stretch(a.positions(), a.rest());
     if (std::getenv("PROBE_DETAIL") != nullptr) {
       // Replay to the worst frame and show that strand: rest and current segment lengths around the vertex.
-      Simulator c = make_sim(hair, probe_params());
+      Simulator c = make_sim(hair, probe_params(), probe_settings());
       for (uint32_t f = 0; f <= worst_frame; ++f) c.advance(scene_frame(scene, f, geo));
       const uint32_t n = c.rest().vertices_per_strand;
       const size_t g = (worst_vertex / n) % c.rest().guide_count, sb = g * n;

@@ -246,3 +246,112 @@ TEST_CASE("analytic: the curly rest pose is a fixed point under the Newmark leng
   INFO("largest drift after 2 s: " << worst / sim.median_strand_length() << " of the median length");
   CHECK(worst < 1e-12 * sim.median_strand_length());
 }
+
+// ---- SimModel::kCompliant (the lane-parallel model; simulator.hpp, GPU twin shaders/sim/frame_lanes.comp) ---------
+// The same analytic checks as above on the compliant model, with the same tolerances.
+// Measured: period within +0.01 % (N 32, 64; 240 and 480 Hz); 1.0000 of the amplitude kept per period at damping 0.
+TEST_CASE("analytic: a hanging chain swings at its discrete period (compliant model)", "[reference][analytic]") {
+  check_chain_period(LengthModel::kCompliant);
+}
+TEST_CASE("analytic: damping alone sets the chain's decay (compliant model)", "[reference][analytic]") {
+  check_chain_decay(LengthModel::kCompliant);
+}
+TEST_CASE("analytic: p - q is the velocity of a settled chain (compliant model)", "[reference][analytic]") {
+  const double v = settled_speed(LengthModel::kCompliant);
+  INFO("largest |p - q| / h after 20 s: " << v << " m/s");
+  CHECK(v <= 1e-6);
+}
+TEST_CASE("analytic: a strand pinned at both ends hangs as the catenary (compliant model)", "[reference][analytic]") {
+  const Catenary cat = discrete_catenary(32, 0.3, 0.25);
+  for (double rate : {240.0, 480.0}) {
+    const CatenaryRun r = catenary_run(rate, LengthModel::kCompliant);
+    INFO("rate " << rate << " stretch " << r.stretch << " drift " << r.drift / 0.3 << " L, sag " << r.sag
+                 << " (expected " << cat.sag << ")");
+    CHECK(r.stretch <= 0.01);
+    CHECK(r.drift <= 1e-3 * 0.3);
+    CHECK(std::abs(r.sag / cat.sag - 1.0) <= 0.01);
+  }
+}
+TEST_CASE("analytic: steady wind and free fall (compliant model)", "[reference][analytic]") {
+  const WindTilt t = wind_tilt(reference_factory(LengthModel::kCompliant));
+  INFO("tilt " << t.angle_deg << " deg, expected " << t.expected_deg << "; off the line " << t.off_line / 0.3 << " L");
+  CHECK(std::abs(t.angle_deg - t.expected_deg) <= 0.5);
+  CHECK(t.off_line <= 1e-3 * 0.3);
+  const FreeFall f = free_fall(reference_factory(LengthModel::kCompliant), 60);
+  INFO("fell " << f.fell << " m, expected " << f.expected << "; worst relative error " << f.worst);
+  CHECK(f.worst <= 1e-9);
+}
+// The shape-free straight chain whips (its tip takes the motion up to the step rate) and its halving is pre-asymptotic
+// over these rates, as on the Newmark model: 0.013, 0.011, 0.021, 0.019. [!shouldfail] with the numbers.
+TEST_CASE("analytic: the model converges as the step halves (compliant model, shape-free chain)",
+          "[reference][analytic][!shouldfail]") {
+  check_convergence(LengthModel::kCompliant);
+}
+// With the shape terms on (the curly groom shaken at the defaults) the compliant model converges: the rms distance
+// between the trajectories at r and 2r (240 ... 3840 Hz, 30 frames) falls every halving and by at least 5x over the
+// four (first order would be 16x; measured 1.5e-3, 7.2e-4, 3.0e-4, 2.0e-4 of the median length: 7.5x).
+TEST_CASE("analytic: the curly groom's shaken trajectory converges as the step halves (compliant model)",
+          "[reference][analytic]") {
+  const auto a = tvk_test::groom("curly", 8);
+  double median = 0;
+  std::vector<std::vector<std::vector<Vec3>>> runs;
+  for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0})
+    runs.push_back(trajectory(a, tvk_test::default_params(), rate, "shake", 30, &median, LengthModel::kCompliant));
+  std::vector<double> diffs;
+  for (size_t k = 0; k + 1 < runs.size(); ++k)
+    diffs.push_back(tressvk::reference::trajectory_error(runs[k], runs[k + 1], median).rms_rel);
+  INFO("rms differences per halving: " << diffs[0] << ", " << diffs[1] << ", " << diffs[2] << ", " << diffs[3]);
+  for (size_t k = 0; k + 1 < diffs.size(); ++k) CHECK(diffs[k + 1] < diffs[k]);
+  CHECK(diffs.back() * 5.0 <= diffs.front());
+}
+
+// A8. The cantilever's sag does not depend on N, step rate or iteration count: within 10 % of its value at N 32,
+// 240 Hz, 2 iterations over N {16, 32, 64}, rates {120, 240, 480} Hz and iterations {1, 2, 4, 8}. 60 Hz is checked
+// at 20 %: measured +10.1 % there (the frames lag a step of 16.7 ms; the static balance itself is h-independent);
+// elsewhere at most +6.3 % (N 16). The follow-the-leader model spreads over 28-174 mm (6x) on the same grid
+// (TVK_DAMP=0.5 tressvk_accuracy_probe cantilever).
+TEST_CASE("analytic: a cantilever's sag is independent of N, step rate and iterations (compliant model)",
+          "[reference][analytic]") {
+  const RunFactory make = reference_factory(LengthModel::kCompliant);
+  const double base = cantilever_sag(make, 32, 240.0, 2);
+  INFO("sag at N 32, 240 Hz, 2 iterations: " << base * 1e3 << " mm");
+  CHECK(base > 0.01);
+  for (uint32_t n : {16u, 64u}) {
+    const double s = cantilever_sag(make, n, 240.0, 2);
+    INFO("N " << n << ": " << s * 1e3 << " mm");
+    CHECK(std::abs(s / base - 1.0) <= 0.10);
+  }
+  for (double rate : {60.0, 120.0, 480.0}) {
+    const double s = cantilever_sag(make, 32, rate, 2);
+    INFO("rate " << rate << ": " << s * 1e3 << " mm");
+    CHECK(std::abs(s / base - 1.0) <= (rate < 100.0 ? 0.20 : 0.10));
+  }
+  for (uint32_t it : {1u, 4u, 8u}) {
+    const double s = cantilever_sag(make, 32, 240.0, it);
+    INFO("iterations " << it << ": " << s * 1e3 << " mm");
+    CHECK(std::abs(s / base - 1.0) <= 0.10);
+  }
+}
+
+// The curly rest pose without gravity is a fixed point (what kept the Newmark length model from the default: the
+// Gauss-Seidel local shape gained energy under it).
+TEST_CASE("analytic: the curly rest pose is a fixed point (compliant model)", "[reference][analytic]") {
+  for (uint32_t it : {1u, 2u}) {
+    auto a = tvk_test::groom("curly", 32, 1);
+    TvkSimSettings s = tvk_test::default_settings();
+    s.gravity[1] = 0.0f;
+    TvkSimParams p = tvk_test::default_params();
+    p.local_iterations = it;
+    tressvk::reference::Simulator sim = tvk_test::make_sim(a, p, s);
+    sim.set_model(LengthModel::kCompliant);
+    const auto geo = tressvk::reference::scene_geometry(sim.rest());
+    const auto first = sim.advance(tressvk::reference::scene_frame("settle", 0, geo));
+    std::vector<Vec3> r;
+    for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) r.push_back(sim.skinned_rest(first.steps[0], i));
+    for (uint32_t f = 1; f < 120; ++f) sim.advance(tressvk::reference::scene_frame("settle", f, geo));
+    double worst = 0;
+    for (size_t i = 0; i < r.size(); ++i) worst = std::max(worst, length(sim.positions()[i] - r[i]));
+    INFO(it << " iterations: largest drift after 2 s: " << worst / sim.median_strand_length() << " of the median length");
+    CHECK(worst < 1e-12 * sim.median_strand_length());
+  }
+}

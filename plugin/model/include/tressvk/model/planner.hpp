@@ -156,4 +156,20 @@ struct GpuFrame {
 GpuFrame to_gpu(const FramePlan& plan);
 sim::GroupParams to_gpu(const GroupStep& group);
 
+// ---- The compliant model (the reference's SimModel::kCompliant; docs/accuracy.md, "The compliant model") ----------
+// TRESSVK_SIM_MODEL=compliant selects it in the plugin (the lane-parallel frame kernel, shaders/sim/frame_lanes.comp)
+// and as the reference Simulator's default, so that every simulation test compares like with like. Read once.
+bool compliant_model_from_environment();
+// Global shape: the spring's fraction k h^2 / (1 + k h^2) at step h, k = s / ((1 - s) h0^2), h0 = 1/240 s.
+double compliant_global_fraction(double s, double h);
+// Local shape: alpha / h^2 of an edge of the calibration length (the strand's length / 31) at step h, from the
+// per-iteration fraction s' = GroupStep::local_stiffness; an edge of rest length a on a strand of length L has
+// alpha / h^2 = compliant_bend_alpha_base(s', h) (31 a / L)^3.
+double compliant_bend_alpha_base(double s_step, double h);
+// The bending constraints' damping gamma = tau / h.
+double compliant_bend_damping(double h);
+// The group's GPU parameters for the compliant kernel: global_stiffness = the spring's fraction at h, reserved0 =
+// compliant_bend_alpha_base, reserved1 = compliant_bend_damping.
+sim::GroupParams to_gpu_compliant(const GroupStep& group, double h);
+
 }  // namespace tressvk::model

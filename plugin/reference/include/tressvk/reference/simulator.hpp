@@ -41,8 +41,25 @@ class Simulator {
   // default yet: local shape adds energy at few iterations, which DFTL's damping hid (the curly rest pose without
   // gravity grows from rounding by about x1.034 per step at 2 local iterations, 0.31 L in 2 s at 1), and the GPU has
   // no twin (docs/accuracy.md).
-  enum class LengthModel { kFollowTheLeader, kNewmark };
+  //
+  // kCompliant (opt-in: set_model, or TRESSVK_SIM_MODEL=compliant as every Simulator's default; GPU twin:
+  // shaders/sim/frame_lanes.comp): the lane-parallel model. Every per-substep solve is parallel over the vertices of a
+  // strand (a scan or a tridiagonal system: parallel cyclic reduction over the lanes on the GPU) and every stiffness
+  // means the same whatever N, step rate and iteration count. Global shape: a spring toward the skinned rest pose
+  // (global_stiffness = its fraction per step at 240 Hz). Local shape: XPBD vector constraints x_{v+1} - x_v = F_v e_v
+  // (F_v the parallel transport of the root frame along the current edges: a prefix product of per-edge minimal
+  // rotations) with a compliance per edge of a^3 / B, all of a strand's constraints solved at once per iteration (a
+  // tridiagonal system, frames held), the multipliers accumulated over the substep, a damping time of 0.1 s on the
+  // constraints (they are follower loads); local_stiffness maps to B so that a cantilever sags as it did at 240 Hz,
+  // 2 iterations, 32 vertices (tressvk::model::compliant_*). Length: the Newmark model's Newton step and implicit
+  // transverse response, then length_iterations more Newton steps (up to 4 more while a segment is off by > 1e-3),
+  // with no serial clean-up. Measured (docs/accuracy.md): cantilever sag within 10 % over N 16-64, 120-480 Hz and 1-8
+  // iterations (60 Hz: +10.1 %), where the follow-the-leader model spreads over 6x.
+  enum class LengthModel { kFollowTheLeader, kNewmark, kCompliant };
+  using SimModel = LengthModel;
   void set_length_model(LengthModel m) { length_model_ = m; }
+  void set_model(SimModel m) { length_model_ = m; }
+  SimModel model() const { return length_model_; }
   const std::vector<TvkSimParams>& params() const { return params_; }
   const ModelRest& rest() const { return rest_; }
   FramePlanner& planner() { return planner_; }
@@ -64,6 +81,7 @@ class Simulator {
   void integrate(const Substep& step);
   void vsp(const Substep& step);
   void local_shape(const Substep& step);
+  void local_shape_compliant(const Substep& step);
   void length_and_collision(const Substep& step);
   void follow(const Substep& step);
 
@@ -104,7 +122,9 @@ class Simulator {
   std::vector<double> seg_cp_, seg_dp_;
   LengthModel length_model_ = LengthModel::kFollowTheLeader;
   std::vector<double> lam_;  // the Newton steps' multipliers summed, per segment
-  std::vector<Vec3> move_, tdp_;  // the Newton steps' move per vertex; the transverse solve's d' (then delta)
+  std::vector<Vec3> move_, tdp_;
+  std::vector<Vec3> lam3_, frame_dir_;  // kCompliant: shape multipliers per edge; per-edge directions
+  std::vector<Quat> frames_;            // kCompliant: the frame at each vertex (aligned to the edge arriving there)  // the Newton steps' move per vertex; the transverse solve's d' (then delta)
 };
 
 }  // namespace tressvk::reference
