@@ -123,7 +123,7 @@ TEST_CASE("render: compute path is independent of the strand order", "[render][v
 
 TEST_CASE("render: over-full tiles split across workgroups match the sorted reference, in any strand order",
           "[render][vulkan][compute]") {
-  // A dense groom in a small view: tiles with more than 2,048 entries (kSplitAt) are composited by several
+  // A dense groom in a small view: tiles with more than 8,192 entries (kSplitAt) are composited by several
   // workgroups, each a share of the tile's depth range, merged front to back by the last one to finish. The same
   // error targets as the whole tiles above, and the same bits for the strands submitted in reversed order (the
   // shares are cut from the tile's own depth histogram and merged in depth order, never in finishing order).

@@ -41,7 +41,7 @@ layout(push_constant) uniform Raster {
 const uint kTile = 8u;          // tile edge in pixels (8 x 8 = one workgroup of the fine pass)
 // A tile with more than kSplitAt entries is composited by ceil(count / kSplit) workgroups, each a contiguous share
 // of its depth-key histogram (kSplit* in plugin/src/render/compute/state.hpp; pc.split.x items at most).
-const uint kSplitAt = 2048u;
+const uint kSplitAt = 8192u;
 const uint kSplit = 1024u;
 const uint kNotSplit = 0xffffffffu;
 const uint kFlagCapture = 1u;

@@ -38,7 +38,7 @@ constexpr uint32_t kSettleFragments = 4;
 // Over-full tiles (raster_layout.glsl): more than kSplitAt entries are composited by ceil(count / kSplit)
 // workgroups of the split pass, which holds kSplitCapacity entries in shared memory (one load for a share of
 // kSplit entries); at most kSplitSlots work items per call (a tile that does not fit stays whole).
-constexpr uint32_t kSplitAt = 2048;
+constexpr uint32_t kSplitAt = 8192;
 constexpr uint32_t kSplit = 1024;
 constexpr uint32_t kSplitCapacity = 1024;
 constexpr uint32_t kSplitSlots = 65535;
