@@ -1,6 +1,8 @@
 // Shared fixtures of the reference tests.
 #pragma once
 
+#include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,24 @@ inline Simulator make_sim(const tressvk::asset::HairAsset& a, const TvkSimParams
 // Largest distance between two position lists divided by the median strand length.
 inline double max_rel(std::span<const Vec3> a, std::span<const Vec3> b, double median) {
   return position_error(a, b, median).max_rel;
+}
+
+// `frames` frames of `settle` without gravity (params `p`, and `model` where given): the largest distance of a guide
+// vertex from the rest pose of the first step, relative to the median strand length (without gravity the rest pose
+// is a fixed point).
+inline double drift_at_rest(const tressvk::asset::HairAsset& a, uint32_t frames, const TvkSimParams& p = default_params(),
+                            std::optional<Simulator::LengthModel> model = std::nullopt) {
+  TvkSimSettings s = default_settings();
+  s.gravity[1] = 0.0f;
+  Simulator sim = make_sim(a, p, s);
+  if (model) sim.set_model(*model);
+  const SceneGeometry geo = scene_geometry(sim.rest());
+  const FramePlan first = sim.advance(scene_frame("settle", 0, geo));
+  std::vector<Vec3> rest;
+  for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) rest.push_back(sim.skinned_rest(first.steps[0], i));
+  for (uint32_t f = 1; f < frames; ++f) sim.advance(scene_frame("settle", f, geo));
+  const auto now = sim.positions();
+  return max_rel(now.first(rest.size()), rest, sim.median_strand_length());
 }
 
 // The same groom `s` times larger, and the scene's inputs with it (tressvk/reference/scaling.hpp, shared with the

@@ -231,20 +231,10 @@ TEST_CASE("analytic: the model converges as the step halves (Newmark length mode
 // at 4 iterations and with local shape off, and under follow-the-leader). [!shouldfail] until local shape is
 // energy-consistent (compliance-based).
 TEST_CASE("analytic: the curly rest pose is a fixed point under the Newmark length model", "[reference][analytic][!shouldfail]") {
-  auto a = tvk_test::groom("curly", 32, 1);
-  TvkSimSettings s = tvk_test::default_settings();
-  s.gravity[1] = 0.0f;
-  tressvk::reference::Simulator sim = tvk_test::make_sim(a, tvk_test::default_params(), s);
-  sim.set_length_model(LengthModel::kNewmark);
-  const auto geo = tressvk::reference::scene_geometry(sim.rest());
-  const auto first = sim.advance(tressvk::reference::scene_frame("settle", 0, geo));
-  std::vector<Vec3> r;
-  for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) r.push_back(sim.skinned_rest(first.steps[0], i));
-  for (uint32_t f = 1; f < 120; ++f) sim.advance(tressvk::reference::scene_frame("settle", f, geo));
-  double worst = 0;
-  for (size_t i = 0; i < r.size(); ++i) worst = std::max(worst, length(sim.positions()[i] - r[i]));
-  INFO("largest drift after 2 s: " << worst / sim.median_strand_length() << " of the median length");
-  CHECK(worst < 1e-12 * sim.median_strand_length());
+  const double drift = tvk_test::drift_at_rest(tvk_test::groom("curly", 32, 1), 120, tvk_test::default_params(),
+                                               LengthModel::kNewmark);
+  INFO("largest drift after 2 s: " << drift << " of the median length");
+  CHECK(drift < 1e-12);
 }
 
 // ---- SimModel::kCompliant (the lane-parallel model; simulator.hpp, GPU twin shaders/sim/frame_lanes.comp) ---------
@@ -337,21 +327,10 @@ TEST_CASE("analytic: a cantilever's sag is independent of N, step rate and itera
 // Gauss-Seidel local shape gained energy under it).
 TEST_CASE("analytic: the curly rest pose is a fixed point (compliant model)", "[reference][analytic]") {
   for (uint32_t it : {1u, 2u}) {
-    auto a = tvk_test::groom("curly", 32, 1);
-    TvkSimSettings s = tvk_test::default_settings();
-    s.gravity[1] = 0.0f;
     TvkSimParams p = tvk_test::default_params();
     p.local_iterations = it;
-    tressvk::reference::Simulator sim = tvk_test::make_sim(a, p, s);
-    sim.set_model(LengthModel::kCompliant);
-    const auto geo = tressvk::reference::scene_geometry(sim.rest());
-    const auto first = sim.advance(tressvk::reference::scene_frame("settle", 0, geo));
-    std::vector<Vec3> r;
-    for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) r.push_back(sim.skinned_rest(first.steps[0], i));
-    for (uint32_t f = 1; f < 120; ++f) sim.advance(tressvk::reference::scene_frame("settle", f, geo));
-    double worst = 0;
-    for (size_t i = 0; i < r.size(); ++i) worst = std::max(worst, length(sim.positions()[i] - r[i]));
-    INFO(it << " iterations: largest drift after 2 s: " << worst / sim.median_strand_length() << " of the median length");
-    CHECK(worst < 1e-12 * sim.median_strand_length());
+    const double drift = tvk_test::drift_at_rest(tvk_test::groom("curly", 32, 1), 120, p, LengthModel::kCompliant);
+    INFO(it << " iterations: largest drift after 2 s: " << drift << " of the median length");
+    CHECK(drift < 1e-12);
   }
 }

@@ -22,20 +22,6 @@ std::vector<Vec3> guide_copy(const Simulator& sim) {
 // Rotation about +Y by a quarter turn, as a function on simulation-space points.
 Vec3 quarter_turn_y(Vec3 v) { return quat_rotate(Quat{0, std::sqrt(0.5), 0, std::sqrt(0.5)}, v); }
 
-// `frames` frames of `settle` without gravity: the largest distance of a guide vertex from the rest pose of the first
-// step, relative to the median strand length (without gravity the rest pose is a fixed point).
-double drift_at_rest(const tressvk::asset::HairAsset& a, uint32_t frames) {
-  TvkSimSettings s = default_settings();
-  s.gravity[1] = 0.0f;
-  Simulator sim = make_sim(a, default_params(), s);
-  SceneGeometry geo = scene_geometry(sim.rest());
-  FramePlan first = sim.advance(scene_frame("settle", 0, geo));
-  std::vector<Vec3> rest;
-  for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) rest.push_back(sim.skinned_rest(first.steps[0], i));
-  for (uint32_t f = 1; f < frames; ++f) sim.advance(scene_frame("settle", f, geo));
-  return max_rel(guide_copy(sim), rest, sim.median_strand_length());
-}
-
 }  // namespace
 
 TEST_CASE("reference: the rest pose is a fixed point without gravity", "[reference][sim]") {
