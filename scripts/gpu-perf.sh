@@ -34,38 +34,33 @@ perf() {  # json name, path, then bench arguments; path "compliant" = the compli
     echo "| $name | failed: $(tail -1 "$OUT/$name.err") |"
 }
 
+# The issue's table for the given paths (prefix of the JSON names, then paths): Ratboy mohawk + 2 follows, curly
+# 32,768 x 32 (1M) and 131,072 x 32 (4M guide vertices), at 60 and 240 Hz.
+T="--scene shake --frames 300 --warmup 60 --error-frames 2"
+table() {
+  local prefix=$1 rate path; shift
+  echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  for rate in 60 240; do
+    for path in "$@"; do
+      [ -f "$MOHAWK" ] && perf "$prefix-ratboy-$path-$rate" "$path" --asset "$MOHAWK" --step-rate "$rate" $T
+      perf "$prefix-curly1M-$path-$rate" "$path" --builtin curly --guides 32768 --step-rate "$rate" $T
+      perf "$prefix-curly4M-$path-$rate" "$path" --builtin curly --guides 131072 --step-rate "$rate" $T
+    done
+  done
+}
+
 # MODELS=1: only the model table (follow-the-leader's fused kernel against the compliant model's lane-parallel kernel,
 # each with its step error against the reference of its own model), then stop.
 if [ "${MODELS:-0}" = 1 ]; then
-  T="--scene shake --frames 300 --warmup 60 --error-frames 2"
-  {
-    echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
-    echo "|---|---|---|---|---|---|---|---|---|"
-    for rate in 60 240; do
-      for path in fused compliant; do
-        [ -f "$MOHAWK" ] && perf "models-ratboy-$path-$rate" "$path" --asset "$MOHAWK" --step-rate "$rate" $T
-        perf "models-curly1M-$path-$rate" "$path" --builtin curly --guides 32768 --step-rate "$rate" $T
-        perf "models-curly4M-$path-$rate" "$path" --builtin curly --guides 131072 --step-rate "$rate" $T
-      done
-    done
-  } | tee "$OUT/models.md"
+  table models fused compliant | tee "$OUT/models.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi
 
-# The issue's table: Ratboy mohawk + 2 follows, curly 32,768 x 32 (1M) and 131,072 x 32 (4M guide vertices), at 60
-# and 240 Hz, both paths (and the shared-memory variant of the frame kernel at 240 Hz).
-T="--scene shake --frames 300 --warmup 60 --error-frames 2"
+# Both paths (and the shared-memory variant of the frame kernel at 240 Hz).
 {
-  echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
-  echo "|---|---|---|---|---|---|---|---|---|"
-  for rate in 60 240; do
-    for path in fused passes; do
-      [ -f "$MOHAWK" ] && perf "table-ratboy-$path-$rate" "$path" --asset "$MOHAWK" --step-rate "$rate" $T
-      perf "table-curly1M-$path-$rate" "$path" --builtin curly --guides 32768 --step-rate "$rate" $T
-      perf "table-curly4M-$path-$rate" "$path" --builtin curly --guides 131072 --step-rate "$rate" $T
-    done
-  done
+  table table fused passes
   [ -f "$MOHAWK" ] && perf "table-ratboy-fused-shared-240" fused-shared --asset "$MOHAWK" --step-rate 240 $T
   perf "table-curly1M-fused-shared-240" fused-shared --builtin curly --guides 32768 --step-rate 240 $T
   perf "table-curly4M-fused-shared-240" fused-shared --builtin curly --guides 131072 --step-rate 240 $T
