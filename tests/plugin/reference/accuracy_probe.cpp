@@ -33,26 +33,26 @@ void chain() {
       }
 }
 
-// Tip sag of a horizontal strand (L 0.2 m, 2 root vertices clamped, defaults) after 10 s under gravity.
-double cantilever_sag(uint32_t n, double rate, uint32_t iterations) {
+// A horizontal strand (L 0.2 m, 2 root vertices clamped, defaults; damping from TVK_DAMP where set) under gravity.
+auto cantilever_run(uint32_t n, double rate, uint32_t iterations) {
   std::vector<Vec3> pts;
   for (uint32_t v = 0; v < n; ++v) pts.push_back({0.2 * v / (n - 1), 0, 0});
   TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
   p.local_iterations = iterations;
   if (const char* e = std::getenv("TVK_DAMP")) p.damping = static_cast<float>(std::atof(e));
-  auto run = reference_factory(g_model)(strand_asset(pts, 2), p, settings_at(rate));
+  return reference_factory(g_model)(strand_asset(pts, 2), p, settings_at(rate));
+}
+
+// Its tip sag after 10 s.
+double cantilever_sag(uint32_t n, double rate, uint32_t iterations) {
+  auto run = cantilever_run(n, rate, iterations);
   for (uint32_t f = 0; f < 600; ++f) run->frame(still_frame());
   const std::vector<Vec3> x = run->positions();
   return x.front().y - x.back().y;
 }
 
 void cantilever_trace(uint32_t n, double rate, uint32_t iterations) {
-  std::vector<Vec3> pts;
-  for (uint32_t v = 0; v < n; ++v) pts.push_back({0.2 * v / (n - 1), 0, 0});
-  TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
-  p.local_iterations = iterations;
-  if (const char* e = std::getenv("TVK_DAMP")) p.damping = static_cast<float>(std::atof(e));
-  auto run = reference_factory(g_model)(strand_asset(pts, 2), p, settings_at(rate));
+  auto run = cantilever_run(n, rate, iterations);
   for (uint32_t f = 0; f < 600; ++f) {
     run->frame(still_frame());
     const std::vector<Vec3> x = run->positions();
