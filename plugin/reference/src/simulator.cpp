@@ -607,6 +607,20 @@ void Simulator::length_and_collision(const Substep& st) {
       if (wb > 0.0) pos_[b + v + 1] -= wb * corr;
       if (dftl && wa == 0.0 && wb > 0.0 && movable(b + v)) prev_[b + v] -= kFtlVelocityCorrection * corr;
     };
+    // A positions-only follow-the-leader clean-up of a strand pinned at both ends, from both ends toward its middle
+    // segment (from the root alone the whole error would stay next to the pinned tip).
+    const auto clean_up_from_both_ends = [&] {
+      const uint32_t split = (n - 1) / 2;
+      for (uint32_t v = 0; v < split; ++v) {
+        const double wb = movable(b + v + 1) ? 1.0 : 0.0;
+        segment(v, (movable(b + v) && !(wb > 0.0)) ? 1.0 : 0.0, wb, false);
+      }
+      for (uint32_t v = n - 2; v > split; --v) {
+        const double wa = movable(b + v) ? 1.0 : 0.0;
+        segment(v, wa, (movable(b + v + 1) && !(wa > 0.0)) ? 1.0 : 0.0, false);
+      }
+      segment(split, movable(b + split) ? 1.0 : 0.0, movable(b + split + 1) ? 1.0 : 0.0, false);
+    };
     if (length_model_ == LengthModel::kCompliant) {
       // SimModel::kCompliant: the Newmark model's Newton step and implicit transverse response, then
       // length_iterations more Newton steps (projections of what the transverse solve moved); every step a tridiagonal solve over the strand (parallel cyclic
@@ -648,16 +662,7 @@ void Simulator::length_and_collision(const Substep& st) {
           segment(v, (movable(b + v) && !(wb > 0.0)) ? 1.0 : 0.0, wb, false);
         }
       } else {
-        const uint32_t split = (n - 1) / 2;
-        for (uint32_t v = 0; v < split; ++v) {
-          const double wb = movable(b + v + 1) ? 1.0 : 0.0;
-          segment(v, (movable(b + v) && !(wb > 0.0)) ? 1.0 : 0.0, wb, false);
-        }
-        for (uint32_t v = n - 2; v > split; --v) {
-          const double wa = movable(b + v) ? 1.0 : 0.0;
-          segment(v, wa, (movable(b + v + 1) && !(wa > 0.0)) ? 1.0 : 0.0, false);
-        }
-        segment(split, movable(b + split) ? 1.0 : 0.0, movable(b + split + 1) ? 1.0 : 0.0, false);
+        clean_up_from_both_ends();
       }
     } else if (movable(b + n - 1)) {
       for (uint32_t it = 0; it < gp.length_iterations; ++it) {
@@ -675,16 +680,7 @@ void Simulator::length_and_collision(const Substep& st) {
       // steps of the whole strand's constraint system (solve_lengths), then a follow-the-leader clean-up from both
       // ends toward the middle segment for what the linearisation left, which moves positions only.
       for (uint32_t it = 0; it < gp.length_iterations; ++it) solve_lengths(b);
-      const uint32_t split = (n - 1) / 2;
-      for (uint32_t v = 0; v < split; ++v) {
-        const double wb = movable(b + v + 1) ? 1.0 : 0.0;
-        segment(v, (movable(b + v) && !(wb > 0.0)) ? 1.0 : 0.0, wb, false);
-      }
-      for (uint32_t v = n - 2; v > split; --v) {
-        const double wa = movable(b + v) ? 1.0 : 0.0;
-        segment(v, wa, (movable(b + v + 1) && !(wa > 0.0)) ? 1.0 : 0.0, false);
-      }
-      segment(split, movable(b + split) ? 1.0 : 0.0, movable(b + split + 1) ? 1.0 : 0.0, false);
+      clean_up_from_both_ends();
     }
 
     if (gp.max_step > 0.0) {
