@@ -151,6 +151,28 @@ VkDeviceSize store_constants(TvkRenderer_T& r, const DrawConstants& dc) {
   return offset;
 }
 
+TvkResult allocate_set(TvkRenderer_T& r, VkDescriptorPool pool, VkDescriptorSetLayout layout, const char* call,
+                       VkDescriptorSet& set) {
+  Context& ctx = *r.ctx;
+  VkDescriptorSetAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  ai.descriptorPool = pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &layout;
+  set = VK_NULL_HANDLE;
+  return ctx.check(ctx.vk.vkAllocateDescriptorSets(ctx.info.device, &ai, &set), call);
+}
+
+std::array<VkDescriptorBufferInfo, 5> hair_buffers(const TvkRenderer_T& r, VkDeviceSize offset,
+                                                   const TvkInstance_T& inst) {
+  return {VkDescriptorBufferInfo{r.ring.buffer, offset, sizeof(DrawConstants)},
+          VkDescriptorBufferInfo{inst.positions.buffer, 0, VK_WHOLE_SIZE},
+          VkDescriptorBufferInfo{inst.tangents.buffer, 0, VK_WHOLE_SIZE},
+          VkDescriptorBufferInfo{inst.asset->statics[sim::kBindingGuideInfo - sim::kBindingRestPositions].buffer, 0,
+                                 VK_WHOLE_SIZE},
+          VkDescriptorBufferInfo{inst.anchors.buffer, 0, VK_WHOLE_SIZE}};
+}
+
 TvkResult check_draw_info(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info, const char* fn) {
   Context& ctx = *r.ctx;
   if (!cmd || !info || info->struct_size != sizeof(TvkDrawInfo) || !info->instance || !info->view)
@@ -179,7 +201,6 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info,
   if (shadow_pass && r.info.shadow.depth_format == VK_FORMAT_UNDEFINED)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: the renderer was created without a shadow target", fn);
   const TvkInstance_T& inst = *info->instance;
-  const TvkAsset_T& asset = *inst.asset;
   const bool shadowed = !shadow_pass && info->shadow && info->shadow->depth_view && info->shadow->sampler;
   if (TvkResult res = begin_call(r, fn); res != TVK_SUCCESS) return res;
 
@@ -198,23 +219,12 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawInfo* info,
   const VkDeviceSize offset = store_constants(r, dc);
 
   // Descriptors.
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = r.pools[r.slot];
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = shadowed ? &r.shadowed_set_layout : &r.set_layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  if (TvkResult res = ctx.check(ctx.vk.vkAllocateDescriptorSets(ctx.info.device, &ai, &set),
-                                "vkAllocateDescriptorSets (hair)");
+  if (TvkResult res = allocate_set(r, r.pools[r.slot], shadowed ? r.shadowed_set_layout : r.set_layout,
+                                   "vkAllocateDescriptorSets (hair)", set);
       res != TVK_SUCCESS)
     return res;
-  const std::array<VkDescriptorBufferInfo, 5> buffers{
-      VkDescriptorBufferInfo{r.ring.buffer, offset, sizeof(DrawConstants)},
-      VkDescriptorBufferInfo{inst.positions.buffer, 0, VK_WHOLE_SIZE},
-      VkDescriptorBufferInfo{inst.tangents.buffer, 0, VK_WHOLE_SIZE},
-      VkDescriptorBufferInfo{asset.statics[sim::kBindingGuideInfo - sim::kBindingRestPositions].buffer, 0,
-                             VK_WHOLE_SIZE},
-      VkDescriptorBufferInfo{inst.anchors.buffer, 0, VK_WHOLE_SIZE}};
+  const std::array<VkDescriptorBufferInfo, 5> buffers = hair_buffers(r, offset, inst);
   std::array<VkWriteDescriptorSet, 6> writes{};
   for (uint32_t i = 0; i < 6; ++i) {
     writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;

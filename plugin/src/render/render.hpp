@@ -76,5 +76,13 @@ TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_
                          DrawConstants& dc, uint32_t& drawn);
 // Copies the constants into this frame's ring slice; returns their offset in r.ring.
 VkDeviceSize store_constants(TvkRenderer_T& r, const DrawConstants& dc);
+// One descriptor set of `layout` from `pool` (one of this frame slot's pools, reset when the slot comes round); `call`
+// names it in the error.
+TvkResult allocate_set(TvkRenderer_T& r, VkDescriptorPool pool, VkDescriptorSetLayout layout, const char* call,
+                       VkDescriptorSet& set);
+// Bindings 0-4 of every hair drawing set: the draw's constants at `offset` in r.ring, the instance's positions,
+// tangents and anchors, the asset's guide info.
+std::array<VkDescriptorBufferInfo, 5> hair_buffers(const TvkRenderer_T& r, VkDeviceSize offset,
+                                                   const TvkInstance_T& inst);
 
 }  // namespace tressvk::render

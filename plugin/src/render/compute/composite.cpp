@@ -17,14 +17,9 @@ TvkResult record_composite(TvkRenderer_T& r, VkCommandBuffer cmd) {
   if (TvkResult res = begin_call(r, fn); res != TVK_SUCCESS) return res;
   if (TvkResult res = ensure_composite_pipeline(r); res != TVK_SUCCESS) return res;
   State& s = *r.compute;
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = r.compute_pools[r.slot];
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &s.composite_set_layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  if (TvkResult res = ctx.check(ctx.vk.vkAllocateDescriptorSets(ctx.info.device, &ai, &set),
-                                "vkAllocateDescriptorSets (hair composite)");
+  if (TvkResult res = allocate_set(r, r.compute_pools[r.slot], s.composite_set_layout,
+                                   "vkAllocateDescriptorSets (hair composite)", set);
       res != TVK_SUCCESS)
     return res;
   const VkDescriptorBufferInfo image{s.image.buffer, 0, VK_WHOLE_SIZE};

@@ -53,22 +53,14 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   const VkDeviceSize constants_offset = store_constants(r, dc);
 
   // Descriptors.
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = r.compute_pools[r.slot];
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &s.set_layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  if (TvkResult res = ctx.check(ctx.vk.vkAllocateDescriptorSets(ctx.info.device, &ai, &set),
-                                "vkAllocateDescriptorSets (hair compute)");
+  if (TvkResult res = allocate_set(r, r.compute_pools[r.slot], s.set_layout, "vkAllocateDescriptorSets (hair compute)",
+                                   set);
       res != TVK_SUCCESS)
     return res;
   std::array<VkDescriptorBufferInfo, kBindingCount> buffers{};
-  buffers[kConstants] = {r.ring.buffer, constants_offset, sizeof(DrawConstants)};
-  buffers[kPositions] = {inst.positions.buffer, 0, VK_WHOLE_SIZE};
-  buffers[kTangents] = {inst.tangents.buffer, 0, VK_WHOLE_SIZE};
-  buffers[kGuideInfo] = {asset.statics[sim::kBindingGuideInfo - sim::kBindingRestPositions].buffer, 0, VK_WHOLE_SIZE};
-  buffers[kAnchors] = {inst.anchors.buffer, 0, VK_WHOLE_SIZE};
+  const std::array<VkDescriptorBufferInfo, 5> hair = hair_buffers(r, constants_offset, inst);
+  std::copy(hair.begin(), hair.end(), buffers.begin());  // kConstants .. kAnchors
   buffers[kVerts] = {s.verts.buffer, 0, VK_WHOLE_SIZE};
   buffers[kTiles] = {s.tiles.buffer, 0, VK_WHOLE_SIZE};
   buffers[kEntries] = {s.entries.buffer, 0, VK_WHOLE_SIZE};

@@ -35,26 +35,15 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
     return res;
   const VkDeviceSize offset = store_constants(r, dc);
   const TvkInstance_T& inst = *info->draw->instance;
-  const TvkAsset_T& asset = *inst.asset;
 
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = r.compute_pools[r.slot];
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &s.shadow_set_layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  if (TvkResult res = ctx.check(ctx.vk.vkAllocateDescriptorSets(ctx.info.device, &ai, &set),
-                                "vkAllocateDescriptorSets (hair shadow compute)");
+  if (TvkResult res = allocate_set(r, r.compute_pools[r.slot], s.shadow_set_layout,
+                                   "vkAllocateDescriptorSets (hair shadow compute)", set);
       res != TVK_SUCCESS)
     return res;
-  const std::array<VkDescriptorBufferInfo, 6> buffers{
-      VkDescriptorBufferInfo{r.ring.buffer, offset, sizeof(DrawConstants)},
-      VkDescriptorBufferInfo{inst.positions.buffer, 0, VK_WHOLE_SIZE},
-      VkDescriptorBufferInfo{inst.tangents.buffer, 0, VK_WHOLE_SIZE},
-      VkDescriptorBufferInfo{asset.statics[sim::kBindingGuideInfo - sim::kBindingRestPositions].buffer, 0,
-                             VK_WHOLE_SIZE},
-      VkDescriptorBufferInfo{inst.anchors.buffer, 0, VK_WHOLE_SIZE},
-      VkDescriptorBufferInfo{s.shadow_depth.buffer, 0, VK_WHOLE_SIZE}};
+  const std::array<VkDescriptorBufferInfo, 5> hair = hair_buffers(r, offset, inst);
+  const std::array<VkDescriptorBufferInfo, 6> buffers{hair[0], hair[1], hair[2], hair[3], hair[4],
+                                                      VkDescriptorBufferInfo{s.shadow_depth.buffer, 0, VK_WHOLE_SIZE}};
   std::array<VkWriteDescriptorSet, 6> writes{};
   for (uint32_t i = 0; i < 6; ++i) {
     writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
