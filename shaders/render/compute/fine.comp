@@ -50,28 +50,36 @@ const uint kBins = 256u;
 const uint kWindow = kReorder > 0u ? kReorder : 1u;
 const float kClear = 0.5 / 255.0;  // transmittance below which a pixel is opaque
 const float kEmpty = 1e31;         // depth of an empty window slot
+// Slack of the coverage masks, pixels: far more than the float rounding of the exact test (1e-3 px at 4K), so a
+// mask never drops a pixel the exact test covers.
+const float kMaskSlack = 1.0 / 16.0;
+const uint kAhead = 4u;  // entries a thread loads before using them (their latencies overlap)
 
 shared uint s_key[kCap];
 shared uint s_seg[kCap];
-shared uint s_hist[kBins];  // per bin: its count; for the bins in shared memory, the end of their entries
+shared uint s_tie[kCap];    // tie_of of the entry, computed once when it is loaded
+shared uint s_order[kCap];  // the slice's entries in composite order (rank -> entry)
+shared uint s_hist[kBins];  // per bin: its count; during a load, the cursor (then the end) of its entries
+shared uint s_pre[kBins + 1u];  // exclusive prefix sums of the counts (s_pre[kBins]: the tile's entries)
+shared uint s_sub[64];          // per subgroup: its sum (the scan of the histogram)
+shared uint s_min[3];           // the parallel searches' results, three in rotation (see next_search)
+shared uint s_pix[128];  // per pixel [2 pixel + h]: bit j of the chunk's segment 32 h + j that may cover it
 shared vec4 s_p0[64], s_p1[64];  // the chunk of segments being composited, in order
 shared uvec4 s_c[64];            // colour at the start and its change along the segment, half floats
 shared vec2 s_p2[64];
 const uint kShadeSlots = kPerFragment != 0u ? 64u : 1u;
 shared vec4 s_pa[kShadeSlots], s_ta[kShadeSlots], s_dp[kShadeSlots], s_dt[kShadeSlots];  // per fragment only
 shared uint s_group[kShadeSlots];
-shared uint s_count, s_done, s_kmin, s_kmax, s_w1, s_b1, s_frags, s_hair;
-shared uint s_part[64], s_bstart, s_bend, s_last;  // split pass: the item's bins, and whether it merges
+shared uint s_done, s_kmin, s_kmax, s_frags, s_hair;
+shared uint s_bstart, s_bend, s_last;  // split pass: the item's bins, and whether it merges
 
 uint bin_of(uint key, uint kmin, uint kmax) {
   return min(uint(float(key - kmin) / float(kmax - kmin + 1u) * float(kBins)), kBins - 1u);
 }
 
-// Any fixed property of the segment itself (not its index, which depends on the submission order).
-uint tie_of(uint seg, uint n) {
-  const uint va = seg / (n - 1u) * n + seg % (n - 1u);
-  return floatBitsToUint(verts[2u * va].x) ^ (floatBitsToUint(verts[2u * va + 2u].y) * 0x9e3779b9u);
-}
+// Any fixed property of the segment itself (not its index, which depends on the submission order): from its
+// two screen points.
+uint tie_of(vec4 a, vec4 b) { return floatBitsToUint(a.x) ^ (floatBitsToUint(b.y) * 0x9e3779b9u); }
 
 vec3 color = vec3(0.0);
 float alpha = 0.0;
@@ -118,6 +126,72 @@ void take(float z, vec4 c) {
   }
 }
 
+// The columns u in 0..7 of a tile row where lo <= a u + b <= hi may hold, as [first, last] (empty if first >
+// last). |a| <= 1; below 1e-3 the value moves by less than 0.004 over the row and is tested at the row's middle
+// (the bounds carry kMaskSlack, so this never drops a column).
+ivec2 columns(float a, float b, float lo, float hi) {
+  if (abs(a) < 1e-3) {
+    const float v = a * 3.5 + b;
+    return v >= lo && v <= hi ? ivec2(0, 7) : ivec2(8, -1);
+  }
+  const float u0 = (lo - b) / a, u1 = (hi - b) / a;
+  const float ulo = clamp(min(u0, u1), -1.0, 9.0), uhi = clamp(max(u0, u1), -1.0, 9.0);
+  return ivec2(max(int(ceil(ulo)), 0), min(int(floor(uhi)), 7));
+}
+
+// Marks in s_pix the tile pixels whose centre segment `slot` (from a to b, widths a.w and b.w in pixels) may
+// cover: conservatively those within half its widest width plus half a pixel of its line (the exact test covers a
+// pixel only where d < (w + 1) / 2, coverage() below) and whose projection falls on it (t in [0, 1]), both with
+// kMaskSlack. Per tile row, each condition is linear in the column: an interval.
+void mark(uint slot, vec4 a, vec4 b, vec2 origin) {
+  const vec2 d = b.xy - a.xy;
+  const float len = length(d);
+  const vec2 e = d / len;
+  const float r = 0.5 + 0.5 * max(a.w, b.w) + kMaskSlack;
+  const uint word = slot >> 5u, bit = 1u << (slot & 31u);
+  for (uint y = 0u; y < kTile; ++y) {
+    const vec2 rel = vec2(origin.x + 0.5, origin.y + float(y) + 0.5) - a.xy;  // column 0's centre
+    const ivec2 along = columns(e.x, dot(rel, e), -kMaskSlack, len + kMaskSlack);
+    const ivec2 across = columns(e.y, rel.x * e.y - rel.y * e.x, -r, r);
+    const int u0 = max(along.x, across.x), u1 = min(along.y, across.y);
+    for (int u = u0; u <= u1; ++u) atomicOr(s_pix[2u * (y * kTile + uint(u)) + word], bit);
+  }
+}
+
+// Segment `seg` (screen points a, b and colours ca, cb) into chunk slot `slot`, its pixels marked.
+void put(uint slot, uint seg, vec4 a, vec4 ca, vec4 b, vec4 cb, vec2 origin, uint n) {
+  const uint si = seg % (n - 1u);
+  const uint va = seg / (n - 1u) * n + si;
+  const vec2 d = b.xy - a.xy;
+  const vec4 dcol = cb - ca;
+  s_p0[slot] = vec4(a.xy, d);
+  s_p1[slot] = vec4(a.z, b.z - a.z, a.w, b.w - a.w);
+  s_p2[slot] = vec2(1.0 / dot(d, d), si + 2u >= n ? 1.0 : 0.0);
+  s_c[slot] = uvec4(packHalf2x16(ca.rg), packHalf2x16(ca.ba), packHalf2x16(dcol.rg), packHalf2x16(dcol.ba));
+  if (kPerFragment != 0u) {  // point (xyz, along) and tangent (xyz, tint) at a, and their change to b
+    const uint at = 2u * (pc.params.y * n + va);
+    const vec4 pa = verts[at], ta = verts[at + 1u], pb = verts[at + 2u], tb = verts[at + 3u];
+    s_pa[slot] = pa;
+    s_ta[slot] = ta;
+    s_dp[slot] = pb - pa;
+    s_dt[slot] = tb - ta;
+    uint strand = seg / (n - 1u);
+    if ((pc.params.z & kFlagReverse) != 0u) strand = pc.params.y - 1u - strand;
+    s_group[slot] = min(guide_info[strand % dc.counts.y].x, 15u);
+  }
+  mark(slot, a, b, origin);
+}
+
+// Three search results in rotation: search k resets the one search k + 1 uses, which search k - 1 used and every
+// thread read before the barrier that ended the phase between (every search is followed by a barrier and read).
+uint search_slot = 0u;
+uint begin_search() {
+  const uint k = search_slot;
+  search_slot = search_slot == 2u ? 0u : search_slot + 1u;
+  if (gl_LocalInvocationIndex == 0u) s_min[search_slot] = 0xffffffffu;
+  return k;
+}
+
 void main() {
   const uint tiles_count = pc.size.z * pc.size.w;
   uint tile, item = 0u;
@@ -153,6 +227,7 @@ void main() {
   if (inside && item == 0u && capture) capture_depth[pixel] = zhost;
   const uint n = dc.counts.x;
   const vec2 centre = vec2(p) + 0.5;
+  const vec2 origin = vec2(tile_xy * kTile);
   for (uint k = 0u; k < kWindow; ++k) {
     wz[k] = kEmpty;
     wc[k] = uvec2(0u);
@@ -167,8 +242,13 @@ void main() {
     s_kmax = 0u;
     s_frags = 0u;
     s_hair = 0u;
+    s_bstart = kBins;
+    s_bend = kBins;
+    s_min[0] = 0xffffffffu;
   }
   for (uint b = lid; b < kBins; b += 64u) s_hist[b] = 0u;
+  s_pix[2u * lid] = 0u;
+  s_pix[2u * lid + 1u] = 0u;
   barrier();
   if (done) atomicAdd(s_done, 1u);
   const bool sliced = count > kSlice;
@@ -179,12 +259,18 @@ void main() {
       s_key[e] = entry.x;
       s_seg[e] = entry.y;
     }
+    barrier();
   } else {
     uint lmin = 0xffffffffu, lmax = 0u;
-    for (uint e = lid; e < count; e += 64u) {
-      const uint key = entries[first + e].x;
-      lmin = min(lmin, key);
-      lmax = max(lmax, key);
+    for (uint e0 = lid; e0 < count; e0 += kAhead * 64u) {
+      uint keys[kAhead];
+      for (uint k = 0u; k < kAhead; ++k) keys[k] = e0 + 64u * k < count ? entries[first + e0 + 64u * k].x : 0u;
+      for (uint k = 0u; k < kAhead; ++k) {
+        if (e0 + 64u * k < count) {
+          lmin = min(lmin, keys[k]);
+          lmax = max(lmax, keys[k]);
+        }
+      }
     }
     lmin = subgroupMin(lmin);  // one shared atomic per subgroup, not one per entry on a single address
     lmax = subgroupMax(lmax);
@@ -195,134 +281,154 @@ void main() {
     barrier();
     kmin = s_kmin;
     kmax = s_kmax;
-    for (uint e = lid; e < count; e += 64u) atomicAdd(s_hist[bin_of(entries[first + e].x, kmin, kmax)], 1u);
+    for (uint e0 = lid; e0 < count; e0 += kAhead * 64u) {
+      uint keys[kAhead];
+      for (uint k = 0u; k < kAhead; ++k) keys[k] = e0 + 64u * k < count ? entries[first + e0 + 64u * k].x : 0u;
+      for (uint k = 0u; k < kAhead; ++k) {
+        if (e0 + 64u * k < count) atomicAdd(s_hist[bin_of(keys[k], kmin, kmax)], 1u);
+      }
+    }
     if (lid == 0u && item == 0u) atomicAdd(counters[6], 1u);
     if (lid == 0u && item == 0u && kSplitPass != 0u) atomicAdd(counters[7], 1u);
+    barrier();
+    // Exclusive prefix sums of the histogram: each thread its 4 bins, a subgroup scan, the subgroups' sums.
+    const uvec4 c = uvec4(s_hist[4u * lid], s_hist[4u * lid + 1u], s_hist[4u * lid + 2u], s_hist[4u * lid + 3u]);
+    const uint sum = c.x + c.y + c.z + c.w;
+    uint before = subgroupExclusiveAdd(sum);
+    if (gl_SubgroupInvocationID == gl_SubgroupSize - 1u) s_sub[gl_SubgroupID] = before + sum;
+    barrier();
+    for (uint q = 0u; q < gl_SubgroupID; ++q) before += s_sub[q];
+    const uvec4 pre = uvec4(before, before + c.x, before + c.x + c.y, before + c.x + c.y + c.z);
+    s_pre[4u * lid] = pre.x;
+    s_pre[4u * lid + 1u] = pre.y;
+    s_pre[4u * lid + 2u] = pre.z;
+    s_pre[4u * lid + 3u] = pre.w;
+    if (lid == 63u) s_pre[kBins] = before + sum;
+    if (kSplitPass != 0u) {
+      // Bin b belongs to item min(items - 1, (entries in the bins before b) / share).
+      const uint share = max((count + items - 1u) / items, 1u);
+      for (uint k = 0u; k < 4u; ++k) {
+        const uint owner = min(items - 1u, pre[k] / share);
+        if (owner >= item) atomicMin(s_bstart, 4u * lid + k);
+        if (owner > item) atomicMin(s_bend, 4u * lid + k);
+      }
+    }
+    barrier();
   }
-  barrier();
   uint wend = kBins;  // the bins this workgroup composites: [w0, wend)
   uint w0 = 0u;       // first bin in shared memory
   if (kSplitPass != 0u) {
-    // Bin b belongs to item min(items - 1, (entries in the bins before b) / share): each thread sums 4 bins, the
-    // entries before its bins are the sums of the threads before it.
-    const uint share = (count + items - 1u) / items;
-    s_part[lid] = s_hist[4u * lid] + s_hist[4u * lid + 1u] + s_hist[4u * lid + 2u] + s_hist[4u * lid + 3u];
-    if (lid == 0u) {
-      s_bstart = kBins;
-      s_bend = kBins;
-    }
-    barrier();
-    uint before = 0u;
-    for (uint q = 0u; q < lid; ++q) before += s_part[q];
-    for (uint b = 4u * lid; b < 4u * lid + 4u; ++b) {
-      const uint owner = min(items - 1u, before / max(share, 1u));
-      if (owner >= item) atomicMin(s_bstart, b);
-      if (owner > item) atomicMin(s_bend, b);
-      before += s_hist[b];
-    }
-    barrier();
     w0 = s_bstart;
     wend = s_bend;
   }
   bool stop = false;
   while (!stop && w0 < wend) {
+    uint w1 = kBins;
     if (sliced) {
-      // Bins [w0, w1) into shared memory: at most kCap entries (at least one bin with entries); their counts
-      // become their starts, then (after the scatter) their ends.
-      if (lid == 0u) {
-        uint b = w0, acc = 0u;
-        while (b < wend) {
-          const uint c = s_hist[b];
-          if (acc != 0u && acc + c > kCap) break;
-          s_hist[b] = acc;
-          acc += c;
-          ++b;
-        }
-        s_w1 = b;
+      // Bins [w0, w1) into shared memory: at most kCap entries (at least one bin with entries): w1 is the first
+      // bin that would overflow them after some entries. Each bin's cursor starts at its entries before it.
+      const uint sk = begin_search();
+      const uint base = s_pre[w0];
+      for (uint b = 4u * lid; b < 4u * lid + 4u; ++b) {
+        if (b < w0 || b >= wend) continue;
+        const uint before = s_pre[b] - base;
+        if (before != 0u && s_pre[b + 1u] - base > kCap) atomicMin(s_min[sk], b);
+        s_hist[b] = before;
       }
       barrier();
-      const uint w1 = s_w1;
-      for (uint e = lid; e < count; e += 64u) {
-        const uvec2 entry = entries[first + e];
-        const uint bin = bin_of(entry.x, kmin, kmax);
-        if (bin >= w0 && bin < w1) {
-          const uint at = atomicAdd(s_hist[bin], 1u);
-          if (at < kCap) {
-            s_key[at] = entry.x;
-            s_seg[at] = entry.y;
-          } else {
-            atomicAdd(counters[3], 1u);  // one bin fuller than kCap
-          }
+      w1 = min(s_min[sk], wend);
+      for (uint e0 = lid; e0 < count; e0 += kAhead * 64u) {
+        uvec2 ahead[kAhead];
+        for (uint k = 0u; k < kAhead; ++k) {
+          ahead[k] = e0 + 64u * k < count ? entries[first + e0 + 64u * k] : uvec2(0xffffffffu, 0u);
         }
-      }
-      barrier();
-      if (lid == 0u) s_hist[w1 - 1u] = min(s_hist[w1 - 1u], kCap);
-    }
-    const uint w1 = sliced ? s_w1 : kBins;
-    uint b0 = w0;
-    while (b0 < w1) {
-      // The next slice: bins [b0, b1) with at most kSlice entries (at least one bin).
-      if (lid == 0u) {
-        uint b = sliced ? b0 : w1;
-        uint acc = 0u;
-        while (b < w1) {
-          const uint c = s_hist[b] - (b == w0 ? 0u : s_hist[b - 1u]);
-          if (acc != 0u && acc + c > kSlice) break;
-          acc += c;
-          ++b;
-        }
-        s_b1 = b;
-      }
-      barrier();
-      const uint b1 = s_b1;
-      const uint o0 = !sliced || b0 == w0 ? 0u : s_hist[b0 - 1u];
-      const uint m = (sliced ? s_hist[b1 - 1u] : count) - o0;
-      // Front-to-back compositing of the slice, 64 segments at a time: each thread ranks its entries (the ones
-      // before it by key, tie key and position) and puts those of this chunk in shared memory in order (in the
-      // form the per-pixel test needs), then every pixel walks them.
-      for (uint base = 0u; base < m; base += 64u) {
-        for (uint i = lid; i < m; i += 64u) {
-          const uint ki = s_key[o0 + i], seg = s_seg[o0 + i];
-          uint ti = 0xffffffffu;
-          uint r = 0u;
-          for (uint j = 0u; j < m; ++j) {
-            const uint kj = s_key[o0 + j];
-            if (kj < ki) {
-              ++r;
-            } else if (kj == ki && j != i) {
-              if (ti == 0xffffffffu) ti = tie_of(seg, n);
-              const uint tj = tie_of(s_seg[o0 + j], n);
-              if (tj < ti || (tj == ti && j < i)) ++r;
+        for (uint k = 0u; k < kAhead; ++k) {
+          const uvec2 entry = ahead[k];
+          const uint bin = e0 + 64u * k < count ? bin_of(entry.x, kmin, kmax) : kBins;
+          if (bin >= w0 && bin < w1) {
+            const uint at = atomicAdd(s_hist[bin], 1u);
+            if (at < kCap) {
+              s_key[at] = entry.x;
+              s_seg[at] = entry.y;
+            } else {
+              atomicAdd(counters[3], 1u);  // one bin fuller than kCap
             }
           }
-          const uint slot = r - base;
-          if (slot >= 64u) continue;
-          const uint si = seg % (n - 1u);
-          const uint va = seg / (n - 1u) * n + si;
-          const vec4 a = verts[2u * va], ca = verts[2u * va + 1u];
-          const vec4 b = verts[2u * va + 2u], cb = verts[2u * va + 3u];
-          const vec2 d = b.xy - a.xy;
-          const vec4 dcol = cb - ca;
-          s_p0[slot] = vec4(a.xy, d);
-          s_p1[slot] = vec4(a.z, b.z - a.z, a.w, b.w - a.w);
-          s_p2[slot] = vec2(1.0 / dot(d, d), si + 2u >= n ? 1.0 : 0.0);
-          s_c[slot] = uvec4(packHalf2x16(ca.rg), packHalf2x16(ca.ba), packHalf2x16(dcol.rg), packHalf2x16(dcol.ba));
-          if (kPerFragment != 0u) {  // point (xyz, along) and tangent (xyz, tint) at a, and their change to b
-            const uint at = 2u * (pc.params.y * n + va);
-            const vec4 pa = verts[at], ta = verts[at + 1u], pb = verts[at + 2u], tb = verts[at + 3u];
-            s_pa[slot] = pa;
-            s_ta[slot] = ta;
-            s_dp[slot] = pb - pa;
-            s_dt[slot] = tb - ta;
-            uint strand = seg / (n - 1u);
-            if ((pc.params.z & kFlagReverse) != 0u) strand = pc.params.y - 1u - strand;
-            s_group[slot] = min(guide_info[strand % dc.counts.y].x, 15u);
-          }
+        }
+      }
+      barrier();  // s_hist[b] is now the end of bin b's entries (at most kCap)
+    }
+    uint b0 = w0;
+    while (b0 < w1) {
+      // The next slice: bins [b0, b1) with at most kSlice entries (at least one bin): b1 is the first bin that
+      // would overflow them after some entries.
+      const uint o0 = b0 == w0 ? 0u : min(s_hist[b0 - 1u], kCap);
+      uint b1 = w1;
+      if (sliced) {
+        const uint sk = begin_search();
+        for (uint b = max(4u * lid, b0); b < min(4u * lid + 4u, w1); ++b) {
+          const uint before = b == b0 ? 0u : min(s_hist[b - 1u], kCap) - o0;
+          if (before != 0u && min(s_hist[b], kCap) - o0 > kSlice) atomicMin(s_min[sk], b);
         }
         barrier();
-        if (!done) {
-          const uint chunk = min(64u, m - base);
-          for (uint j = 0u; j < chunk; ++j) {
+        b1 = min(s_min[sk], w1);
+      }
+      const uint m = (sliced ? min(s_hist[b1 - 1u], kCap) : count) - o0;
+      b0 = b1;
+      if (m == 0u) continue;  // uniform
+      // Each entry's screen points (kept for the chunk when the slice is one) and tie key, then its rank (by key,
+      // tie key, then position: a total order independent of the submission order). A slice of at most 64
+      // entries (nearly all) goes straight into the chunk in rank order; a fuller one (a single bin) is ordered
+      // into s_order and put in shared memory 64 at a time.
+      const bool one = m <= 64u;  // uniform
+      uint seg = 0u;
+      vec4 a = vec4(0.0), ca = vec4(0.0), b = vec4(0.0), cb = vec4(0.0);
+      for (uint i = lid; i < m; i += 64u) {
+        seg = s_seg[o0 + i];
+        const uint va = seg / (n - 1u) * n + seg % (n - 1u);
+        a = verts[2u * va];
+        b = verts[2u * va + 2u];
+        if (one) {
+          ca = verts[2u * va + 1u];
+          cb = verts[2u * va + 3u];
+        }
+        s_tie[o0 + i] = tie_of(a, b);
+      }
+      barrier();
+      for (uint i = lid; i < m; i += 64u) {
+        const uint ki = s_key[o0 + i], ti = s_tie[o0 + i];
+        uint r = 0u;
+        for (uint j = 0u; j < m; ++j) {
+          const uint kj = s_key[o0 + j];
+          if (kj < ki || (kj == ki && j != i && (s_tie[o0 + j] < ti || (s_tie[o0 + j] == ti && j < i)))) ++r;
+        }
+        if (one) {
+          put(r, seg, a, ca, b, cb, origin, n);
+        } else {
+          s_order[r] = o0 + i;
+        }
+      }
+      barrier();
+      // Front-to-back compositing of the slice, 64 segments at a time: each segment in shared memory (in the
+      // form the per-pixel test needs) has marked the pixels it may cover; every pixel runs the exact test on
+      // its marked segments only, in order.
+      for (uint base = 0u; base < m; base += 64u) {
+        if (!one) {
+          if (base + lid < m) {
+            seg = s_seg[s_order[base + lid]];
+            const uint va = seg / (n - 1u) * n + seg % (n - 1u);
+            put(lid, seg, verts[2u * va], verts[2u * va + 1u], verts[2u * va + 2u], verts[2u * va + 3u], origin, n);
+          }
+          barrier();
+        }
+        const uvec2 marked = uvec2(s_pix[2u * lid], s_pix[2u * lid + 1u]);
+        s_pix[2u * lid] = 0u;  // for the next chunk (marked after the barrier below)
+        s_pix[2u * lid + 1u] = 0u;
+        for (uint h = 0u; h < 2u && !done; ++h) {
+          uint bits = h == 0u ? marked.x : marked.y;
+          while (bits != 0u) {
+            const uint j = 32u * h + uint(findLSB(bits));
+            bits &= bits - 1u;
             const vec4 p0 = s_p0[j];
             const vec2 rel = centre - p0.xy;
             const vec2 p2 = s_p2[j];
@@ -354,7 +460,6 @@ void main() {
         if (stop) break;
       }
       if (stop) break;
-      b0 = b1;
     }
     w0 = w1;
   }
