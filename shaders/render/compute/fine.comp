@@ -358,60 +358,49 @@ void main() {
       }
       barrier();  // s_hist[b] is now the end of bin b's entries (at most kCap)
     }
-    uint b0 = w0;
-    while (b0 < w1) {
-      // The next slice: bins [b0, b1) with at most kSlice entries (at least one bin): b1 is the first bin that
-      // would overflow them after some entries.
-      const uint o0 = b0 == w0 ? 0u : min(s_hist[b0 - 1u], kCap);
-      uint b1 = w1;
+    // The loaded entries in composite order: by bin (they are stored so), then within their bin by key, tie key
+    // and position (a total order independent of the submission order). Each entry's tie key first (from its
+    // screen points, kept for the chunk when all fit in one), then its rank among its bin's entries.
+    const uint m = sliced ? min(s_hist[w1 - 1u], kCap) : count;
+    const bool one = m <= 64u;  // uniform
+    uint seg = 0u;
+    vec4 a = vec4(0.0), ca = vec4(0.0), b = vec4(0.0), cb = vec4(0.0);
+    for (uint i = lid; i < m; i += 64u) {
+      seg = s_seg[i];
+      const uint va = seg / (n - 1u) * n + seg % (n - 1u);
+      a = verts[2u * va];
+      b = verts[2u * va + 2u];
+      if (one) {
+        ca = verts[2u * va + 1u];
+        cb = verts[2u * va + 3u];
+      }
+      s_tie[i] = tie_of(a, b);
+    }
+    barrier();
+    for (uint i = lid; i < m; i += 64u) {
+      const uint ki = s_key[i], ti = s_tie[i];
+      uint lo = 0u, hi = m;
       if (sliced) {
-        const uint sk = begin_search();
-        for (uint b = max(4u * lid, b0); b < min(4u * lid + 4u, w1); ++b) {
-          const uint before = b == b0 ? 0u : min(s_hist[b - 1u], kCap) - o0;
-          if (before != 0u && min(s_hist[b], kCap) - o0 > kSlice) atomicMin(s_min[sk], b);
-        }
-        barrier();
-        b1 = min(s_min[sk], w1);
+        const uint bin = bin_of(ki, kmin, kmax);
+        lo = bin == w0 ? 0u : min(s_hist[bin - 1u], kCap);
+        hi = min(s_hist[bin], kCap);
       }
-      const uint m = (sliced ? min(s_hist[b1 - 1u], kCap) : count) - o0;
-      b0 = b1;
-      if (m == 0u) continue;  // uniform
-      // Each entry's screen points (kept for the chunk when the slice is one) and tie key, then its rank (by key,
-      // tie key, then position: a total order independent of the submission order). A slice of at most 64
-      // entries (nearly all) goes straight into the chunk in rank order; a fuller one (a single bin) is ordered
-      // into s_order and put in shared memory 64 at a time.
-      const bool one = m <= 64u;  // uniform
-      uint seg = 0u;
-      vec4 a = vec4(0.0), ca = vec4(0.0), b = vec4(0.0), cb = vec4(0.0);
-      for (uint i = lid; i < m; i += 64u) {
-        seg = s_seg[o0 + i];
-        const uint va = seg / (n - 1u) * n + seg % (n - 1u);
-        a = verts[2u * va];
-        b = verts[2u * va + 2u];
-        if (one) {
-          ca = verts[2u * va + 1u];
-          cb = verts[2u * va + 3u];
-        }
-        s_tie[o0 + i] = tie_of(a, b);
+      uint r = lo;
+      for (uint j = lo; j < hi; ++j) {
+        const uint kj = s_key[j];
+        if (kj < ki || (kj == ki && j != i && (s_tie[j] < ti || (s_tie[j] == ti && j < i)))) ++r;
       }
-      barrier();
-      for (uint i = lid; i < m; i += 64u) {
-        const uint ki = s_key[o0 + i], ti = s_tie[o0 + i];
-        uint r = 0u;
-        for (uint j = 0u; j < m; ++j) {
-          const uint kj = s_key[o0 + j];
-          if (kj < ki || (kj == ki && j != i && (s_tie[o0 + j] < ti || (s_tie[o0 + j] == ti && j < i)))) ++r;
-        }
-        if (one) {
-          put(r, seg, a, ca, b, cb, origin, n);
-        } else {
-          s_order[r] = o0 + i;
-        }
+      if (one) {
+        put(r, seg, a, ca, b, cb, origin, n);
+      } else {
+        s_order[r] = i;
       }
-      barrier();
-      // Front-to-back compositing of the slice, 64 segments at a time: each segment in shared memory (in the
-      // form the per-pixel test needs) has marked the pixels it may cover; every pixel runs the exact test on
-      // its marked segments only, in order.
+    }
+    barrier();
+    {
+      // Front-to-back compositing, 64 segments at a time: each segment in shared memory (in the form the
+      // per-pixel test needs) has marked the pixels it may cover; every pixel runs the exact test on its marked
+      // segments only, in order.
       for (uint base = 0u; base < m; base += 64u) {
         if (!one) {
           if (base + lid < m) {
@@ -459,7 +448,6 @@ void main() {
         stop = s_done == 64u;
         if (stop) break;
       }
-      if (stop) break;
     }
     w0 = w1;
   }
