@@ -53,7 +53,8 @@ const float kEmpty = 1e31;         // depth of an empty window slot
 // Slack of the coverage masks, pixels: far more than the float rounding of the exact test (1e-3 px at 4K), so a
 // mask never drops a pixel the exact test covers.
 const float kMaskSlack = 1.0 / 16.0;
-const uint kAhead = 4u;  // entries a thread loads before using them (their latencies overlap)
+const uint kAhead = 8u;  // entries a thread loads before using them (their latencies overlap; 8 beat 4)
+const uint kChunk = 64u;  // segments composited between two barriers (a multiple of 64; 128 measured slower)
 
 shared uint s_key[kCap];
 shared uint s_seg[kCap];
@@ -63,11 +64,12 @@ shared uint s_hist[kBins];  // per bin: its count; during a load, the cursor (th
 shared uint s_pre[kBins + 1u];  // exclusive prefix sums of the counts (s_pre[kBins]: the tile's entries)
 shared uint s_sub[64];          // per subgroup: its sum (the scan of the histogram)
 shared uint s_min[3];           // the parallel searches' results, three in rotation (see next_search)
-shared uint s_pix[128];  // per pixel [2 pixel + h]: bit j of the chunk's segment 32 h + j that may cover it
-shared vec4 s_p0[64], s_p1[64];  // the chunk of segments being composited, in order
-shared uvec4 s_c[64];            // colour at the start and its change along the segment, half floats
-shared vec2 s_p2[64];
-const uint kShadeSlots = kPerFragment != 0u ? 64u : 1u;
+const uint kWords = kChunk / 32u;  // mask words per pixel
+shared uint s_pix[kWords * 64u];  // per pixel [kWords pixel + h]: bit j of chunk segment 32 h + j that may cover it
+shared vec4 s_p0[kChunk], s_p1[kChunk];  // the chunk of segments being composited, in order
+shared uvec4 s_c[kChunk];  // colour at the start and its change along the segment, half floats
+shared vec2 s_p2[kChunk];
+const uint kShadeSlots = kPerFragment != 0u ? kChunk : 1u;
 shared vec4 s_pa[kShadeSlots], s_ta[kShadeSlots], s_dp[kShadeSlots], s_dt[kShadeSlots];  // per fragment only
 shared uint s_group[kShadeSlots];
 shared uint s_done, s_kmin, s_kmax, s_frags, s_hair;
@@ -154,7 +156,7 @@ void mark(uint slot, vec4 a, vec4 b, vec2 origin) {
     const ivec2 along = columns(e.x, dot(rel, e), -kMaskSlack, len + kMaskSlack);
     const ivec2 across = columns(e.y, rel.x * e.y - rel.y * e.x, -r, r);
     const int u0 = max(along.x, across.x), u1 = min(along.y, across.y);
-    for (int u = u0; u <= u1; ++u) atomicOr(s_pix[2u * (y * kTile + uint(u)) + word], bit);
+    for (int u = u0; u <= u1; ++u) atomicOr(s_pix[kWords * (y * kTile + uint(u)) + word], bit);
   }
 }
 
@@ -247,8 +249,7 @@ void main() {
     s_min[0] = 0xffffffffu;
   }
   for (uint b = lid; b < kBins; b += 64u) s_hist[b] = 0u;
-  s_pix[2u * lid] = 0u;
-  s_pix[2u * lid + 1u] = 0u;
+  for (uint h = 0u; h < kWords; ++h) s_pix[kWords * lid + h] = 0u;
   barrier();
   if (done) atomicAdd(s_done, 1u);
   const bool sliced = count > kSlice;
@@ -398,23 +399,20 @@ void main() {
     }
     barrier();
     {
-      // Front-to-back compositing, 64 segments at a time: each segment in shared memory (in the form the
+      // Front-to-back compositing, kChunk segments at a time: each segment in shared memory (in the form the
       // per-pixel test needs) has marked the pixels it may cover; every pixel runs the exact test on its marked
       // segments only, in order.
-      for (uint base = 0u; base < m; base += 64u) {
+      for (uint base = 0u; base < m; base += kChunk) {
         if (!one) {
-          if (base + lid < m) {
-            seg = s_seg[s_order[base + lid]];
+          for (uint slot = lid; slot < kChunk && base + slot < m; slot += 64u) {
+            seg = s_seg[s_order[base + slot]];
             const uint va = seg / (n - 1u) * n + seg % (n - 1u);
-            put(lid, seg, verts[2u * va], verts[2u * va + 1u], verts[2u * va + 2u], verts[2u * va + 3u], origin, n);
+            put(slot, seg, verts[2u * va], verts[2u * va + 1u], verts[2u * va + 2u], verts[2u * va + 3u], origin, n);
           }
           barrier();
         }
-        const uvec2 marked = uvec2(s_pix[2u * lid], s_pix[2u * lid + 1u]);
-        s_pix[2u * lid] = 0u;  // for the next chunk (marked after the barrier below)
-        s_pix[2u * lid + 1u] = 0u;
-        for (uint h = 0u; h < 2u && !done; ++h) {
-          uint bits = h == 0u ? marked.x : marked.y;
+        for (uint h = 0u; h < kWords && !done; ++h) {
+          uint bits = s_pix[kWords * lid + h];
           while (bits != 0u) {
             const uint j = 32u * h + uint(findLSB(bits));
             bits &= bits - 1u;
@@ -444,6 +442,7 @@ void main() {
             }
           }
         }
+        for (uint h = 0u; h < kWords; ++h) s_pix[kWords * lid + h] = 0u;  // for the next chunk's marks
         barrier();  // the chunk is read; s_done is final until the next chunk's compositing
         stop = s_done == 64u;
         if (stop) break;
