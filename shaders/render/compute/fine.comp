@@ -56,11 +56,12 @@ const float kMaskSlack = 1.0 / 16.0;
 const uint kAhead = 8u;  // entries a thread loads before using them (their latencies overlap; 8 beat 4)
 const uint kChunk = 64u;  // segments composited between two barriers (a multiple of 64; 128 measured slower)
 
-shared uint s_key[kCap];
-shared uint s_seg[kCap];
-shared uint s_tie[kCap];    // tie_of of the entry, computed once when it is loaded
-shared uint s_order[kCap];  // the slice's entries in composite order (rank -> entry)
-shared uint s_hist[kBins];  // per bin: its count; during a load, the cursor (then the end) of its entries
+// The loaded entries: [0, kCap) their keys, [kCap, 2 kCap) their segments, [2 kCap, 3 kCap) their tie keys
+// (tie_of, computed once per load), [3 kCap, 4 kCap) the entries in composite order (rank -> entry). Before the
+// tie keys and the order are written, [2 kCap, 2 kCap + kBins) holds per bin its count (the histogram), then during
+// a load the cursor of its entries (kCap >= kBins / 2).
+shared uint s_buf[4u * kCap];
+const uint kSeg = kCap, kTie = 2u * kCap, kHist = 2u * kCap, kOrder = 3u * kCap;
 shared uint s_pre[kBins + 1u];  // exclusive prefix sums of the counts (s_pre[kBins]: the tile's entries)
 shared uint s_sub[64];          // per subgroup: its sum (the scan of the histogram)
 shared uint s_min[3];           // the parallel searches' results, three in rotation (see next_search)
@@ -248,7 +249,7 @@ void main() {
     s_bend = kBins;
     s_min[0] = 0xffffffffu;
   }
-  for (uint b = lid; b < kBins; b += 64u) s_hist[b] = 0u;
+  for (uint b = lid; b < kBins; b += 64u) s_buf[kHist + b] = 0u;
   for (uint h = 0u; h < kWords; ++h) s_pix[kWords * lid + h] = 0u;
   barrier();
   if (done) atomicAdd(s_done, 1u);
@@ -257,8 +258,8 @@ void main() {
   if (!sliced) {
     for (uint e = lid; e < count; e += 64u) {
       const uvec2 entry = entries[first + e];
-      s_key[e] = entry.x;
-      s_seg[e] = entry.y;
+      s_buf[e] = entry.x;
+      s_buf[kSeg + e] = entry.y;
     }
     barrier();
   } else {
@@ -286,14 +287,15 @@ void main() {
       uint keys[kAhead];
       for (uint k = 0u; k < kAhead; ++k) keys[k] = e0 + 64u * k < count ? entries[first + e0 + 64u * k].x : 0u;
       for (uint k = 0u; k < kAhead; ++k) {
-        if (e0 + 64u * k < count) atomicAdd(s_hist[bin_of(keys[k], kmin, kmax)], 1u);
+        if (e0 + 64u * k < count) atomicAdd(s_buf[kHist + bin_of(keys[k], kmin, kmax)], 1u);
       }
     }
     if (lid == 0u && item == 0u) atomicAdd(counters[6], 1u);
     if (lid == 0u && item == 0u && kSplitPass != 0u) atomicAdd(counters[7], 1u);
     barrier();
     // Exclusive prefix sums of the histogram: each thread its 4 bins, a subgroup scan, the subgroups' sums.
-    const uvec4 c = uvec4(s_hist[4u * lid], s_hist[4u * lid + 1u], s_hist[4u * lid + 2u], s_hist[4u * lid + 3u]);
+    const uint h4 = kHist + 4u * lid;
+    const uvec4 c = uvec4(s_buf[h4], s_buf[h4 + 1u], s_buf[h4 + 2u], s_buf[h4 + 3u]);
     const uint sum = c.x + c.y + c.z + c.w;
     uint before = subgroupExclusiveAdd(sum);
     if (gl_SubgroupInvocationID == gl_SubgroupSize - 1u) s_sub[gl_SubgroupID] = before + sum;
@@ -325,16 +327,17 @@ void main() {
   bool stop = false;
   while (!stop && w0 < wend) {
     uint w1 = kBins;
+    uint base = 0u;  // entries in the bins before w0
     if (sliced) {
       // Bins [w0, w1) into shared memory: at most kCap entries (at least one bin with entries): w1 is the first
       // bin that would overflow them after some entries. Each bin's cursor starts at its entries before it.
       const uint sk = begin_search();
-      const uint base = s_pre[w0];
+      base = s_pre[w0];
       for (uint b = 4u * lid; b < 4u * lid + 4u; ++b) {
         if (b < w0 || b >= wend) continue;
         const uint before = s_pre[b] - base;
         if (before != 0u && s_pre[b + 1u] - base > kCap) atomicMin(s_min[sk], b);
-        s_hist[b] = before;
+        s_buf[kHist + b] = before;
       }
       barrier();
       w1 = min(s_min[sk], wend);
@@ -347,27 +350,27 @@ void main() {
           const uvec2 entry = ahead[k];
           const uint bin = e0 + 64u * k < count ? bin_of(entry.x, kmin, kmax) : kBins;
           if (bin >= w0 && bin < w1) {
-            const uint at = atomicAdd(s_hist[bin], 1u);
+            const uint at = atomicAdd(s_buf[kHist + bin], 1u);
             if (at < kCap) {
-              s_key[at] = entry.x;
-              s_seg[at] = entry.y;
+              s_buf[at] = entry.x;
+              s_buf[kSeg + at] = entry.y;
             } else {
               atomicAdd(counters[3], 1u);  // one bin fuller than kCap
             }
           }
         }
       }
-      barrier();  // s_hist[b] is now the end of bin b's entries (at most kCap)
+      barrier();
     }
     // The loaded entries in composite order: by bin (they are stored so), then within their bin by key, tie key
     // and position (a total order independent of the submission order). Each entry's tie key first (from its
     // screen points, kept for the chunk when all fit in one), then its rank among its bin's entries.
-    const uint m = sliced ? min(s_hist[w1 - 1u], kCap) : count;
+    const uint m = sliced ? min(s_pre[w1] - base, kCap) : count;
     const bool one = m <= 64u;  // uniform
     uint seg = 0u;
     vec4 a = vec4(0.0), ca = vec4(0.0), b = vec4(0.0), cb = vec4(0.0);
     for (uint i = lid; i < m; i += 64u) {
-      seg = s_seg[i];
+      seg = s_buf[kSeg + i];
       const uint va = seg / (n - 1u) * n + seg % (n - 1u);
       a = verts[2u * va];
       b = verts[2u * va + 2u];
@@ -375,26 +378,26 @@ void main() {
         ca = verts[2u * va + 1u];
         cb = verts[2u * va + 3u];
       }
-      s_tie[i] = tie_of(a, b);
+      s_buf[kTie + i] = tie_of(a, b);
     }
     barrier();
     for (uint i = lid; i < m; i += 64u) {
-      const uint ki = s_key[i], ti = s_tie[i];
+      const uint ki = s_buf[i], ti = s_buf[kTie + i];
       uint lo = 0u, hi = m;
       if (sliced) {
         const uint bin = bin_of(ki, kmin, kmax);
-        lo = bin == w0 ? 0u : min(s_hist[bin - 1u], kCap);
-        hi = min(s_hist[bin], kCap);
+        lo = min(s_pre[bin] - base, kCap);
+        hi = min(s_pre[bin + 1u] - base, kCap);
       }
       uint r = lo;
       for (uint j = lo; j < hi; ++j) {
-        const uint kj = s_key[j];
-        if (kj < ki || (kj == ki && j != i && (s_tie[j] < ti || (s_tie[j] == ti && j < i)))) ++r;
+        const uint kj = s_buf[j];
+        if (kj < ki || (kj == ki && j != i && (s_buf[kTie + j] < ti || (s_buf[kTie + j] == ti && j < i)))) ++r;
       }
       if (one) {
         put(r, seg, a, ca, b, cb, origin, n);
       } else {
-        s_order[r] = i;
+        s_buf[kOrder + r] = i;
       }
     }
     barrier();
@@ -405,7 +408,7 @@ void main() {
       for (uint base = 0u; base < m; base += kChunk) {
         if (!one) {
           for (uint slot = lid; slot < kChunk && base + slot < m; slot += 64u) {
-            seg = s_seg[s_order[base + slot]];
+            seg = s_buf[kSeg + s_buf[kOrder + base + slot]];
             const uint va = seg / (n - 1u) * n + seg % (n - 1u);
             put(slot, seg, verts[2u * va], verts[2u * va + 1u], verts[2u * va + 2u], verts[2u * va + 3u], origin, n);
           }
