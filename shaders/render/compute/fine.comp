@@ -255,14 +255,7 @@ void main() {
   if (done) atomicAdd(s_done, 1u);
   const bool sliced = count > kSlice;
   uint kmin = 0u, kmax = 0u;
-  if (!sliced) {
-    for (uint e = lid; e < count; e += 64u) {
-      const uvec2 entry = entries[first + e];
-      s_buf[e] = entry.x;
-      s_buf[kSeg + e] = entry.y;
-    }
-    barrier();
-  } else {
+  if (sliced) {  // (a tile of at most kSlice entries loads them with their tie keys below)
     uint lmin = 0xffffffffu, lmax = 0u;
     for (uint e0 = lid; e0 < count; e0 += kAhead * 64u) {
       uint keys[kAhead];
@@ -370,7 +363,14 @@ void main() {
     uint seg = 0u;
     vec4 a = vec4(0.0), ca = vec4(0.0), b = vec4(0.0), cb = vec4(0.0);
     for (uint i = lid; i < m; i += 64u) {
-      seg = s_buf[kSeg + i];
+      if (sliced) {
+        seg = s_buf[kSeg + i];
+      } else {
+        const uvec2 entry = entries[first + i];
+        s_buf[i] = entry.x;
+        s_buf[kSeg + i] = entry.y;
+        seg = entry.y;
+      }
       const uint va = seg / (n - 1u) * n + seg % (n - 1u);
       a = verts[2u * va];
       b = verts[2u * va + 2u];
