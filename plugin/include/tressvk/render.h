@@ -252,6 +252,9 @@ typedef struct TvkRasterStats {
   uint32_t entry_capacity;
   uint32_t slice_capacity;            /* segments sorted at once per tile */
   uint64_t split_tiles;               /* over-full tiles composited in depth shares by several workgroups */
+  uint64_t shadow_samples_outside;    /* tressvk_cmd_shadow_hair (its last call that copied a rectangle): hair samples
+                                         inside the map but outside the rectangle it copied, i.e. not written. The
+                                         rectangle is conservative, so this is 0; tests check it */
 } TvkRasterStats;
 TVK_API TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out_stats);
 

@@ -143,6 +143,39 @@ TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_
   return TVK_SUCCESS;
 }
 
+double hair_bound_radius(const TvkInstance_T& inst) {
+  // Skinned: the roots follow the bones of the simulation's last step, which lies between the previous frame's bones
+  // and this frame's; the renderer knows only this frame's, so it claims no bound.
+  if (inst.frame.bones) return -1.0;
+  TvkAsset_T& asset = *inst.asset;
+  const asset::HairAsset& a = asset.cpu;
+  if (asset.render_guide_reach < 0.0) {
+    // A guide vertex lies within its chain's length of its root; 1.25 x the rest length leaves room for a stretch
+    // far beyond what the length passes let through.
+    double reach = 0.0, offset = 0.0;
+    const uint32_t n = a.vertices_per_strand;
+    for (uint32_t g = 0; g < a.guide_count(); ++g) {
+      const auto& root = a.rest_positions[size_t{g} * n];
+      double length = 0.0;
+      for (uint32_t v = 0; v + 1 < n; ++v) length += a.rest_lengths[size_t{g} * n + v];
+      const double r = std::sqrt(double{root[0]} * root[0] + double{root[1]} * root[1] + double{root[2]} * root[2]);
+      reach = std::max(reach, r + 1.25 * length);
+    }
+    for (const auto& f : a.follow_offsets)
+      offset = std::max(offset, std::sqrt(double{f[0]} * f[0] + double{f[1]} * f[1] + double{f[2]} * f[2]));
+    asset.render_follow_offset = offset;
+    asset.render_guide_reach = reach;
+  }
+  // Follows: their guide's vertex plus the root offset spread by (1 + tip_separation * t).
+  double separation = std::max(0.0, asset.rest.asset_tip_separation);
+  for (const TvkSimParams& p : inst.params)
+    if (p.tip_separation >= 0.0f) separation = std::max(separation, double{p.tip_separation});
+  // Rigid: a root x (relative to the asset origin a) is at R (a + x) + T at the last step, and the simulation origin
+  // O is T + R a rounded to 1/1024 m per axis (model/planner.cpp), so |root - O| <= |x| + sqrt(3) / 2048 m whatever
+  // the rotation. 1 mm covers that rounding and float rounding.
+  return asset.render_guide_reach + (1.0 + separation) * asset.render_follow_offset + 1e-3;
+}
+
 VkDeviceSize store_constants(TvkRenderer_T& r, const DrawConstants& dc) {
   const VkDeviceSize offset = (VkDeviceSize{r.slot} * r.max_draws + r.draws_in_frame) * r.block_stride;
   std::memcpy(static_cast<char*>(r.ring.mapped) + offset, &dc, sizeof(dc));

@@ -296,7 +296,7 @@ void destroy(TvkRenderer_T& r) {
   if (s.set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.set_layout, c.info.allocator);
   if (s.composite_set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.composite_set_layout, c.info.allocator);
   if (s.sampler) c.vk.vkDestroySampler(dev, s.sampler, c.info.allocator);
-  for (GpuBuffer* b : {&s.split_items, &s.partials, &s.shadow_depth, &s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
+  for (GpuBuffer* b : {&s.split_items, &s.partials, &s.shadow_depth, &s.shadow_readback, &s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
                        &s.capture_verts, &s.capture_host_depth, &s.capture_image})
     destroy_buffer(c, *b);
   delete r.compute;
