@@ -80,6 +80,12 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
       ->capture_default_str();
   c->add_option("--lod-fraction", o.lod_fraction, "draw this fraction of the strands, widened to keep coverage")
       ->check(CLI::Range(0.01f, 1.0f));
+  c->add_option("--lod-target-px", o.lod_target_px,
+                "coverage-driven LOD: thin sub-pixel strands until the drawn ones are about this many pixels wide")
+      ->check(CLI::Range(0.0f, 64.0f));
+  c->add_flag("--error-vs-full", o.error_vs_full,
+              "compute path: also compare the drawn layer with the sorted reference of ALL strands (the same frame "
+              "rendered without LOD; error_vs_full_*), so a LOD row states what thinning costs");
   c->add_option("--animate", o.animate, "none, turn, shake or run")->check(CLI::IsMember({"none", "turn", "shake", "run"}))
       ->capture_default_str();
   c->add_option("--json", o.json, "write the results as JSON");
@@ -137,10 +143,16 @@ int run_render_bench(const RenderBenchOptions& o) {
       d.guides = o.guides;
       d.follows = o.follows;
     }
+    if (o.lod_fraction < 1.0f && o.lod_target_px > 0.0f)
+      throw std::runtime_error("--lod-fraction and --lod-target-px are two LOD modes: give one");
     if (o.lod_fraction < 1.0f) {  // full thinning from the start: every frame draws lod_fraction of the strands
       d.lod_start = 1e-4f;
       d.lod_end = 2e-4f;
       d.lod_min_fraction = o.lod_fraction;
+    }
+    if (o.lod_target_px > 0.0f) {
+      d.lod_target_px = o.lod_target_px;
+      d.lod_min_fraction = 0.0f;  // no floor: the coverage alone decides
     }
 
     demo::DemoApp app(dev, d);
@@ -215,6 +227,40 @@ int run_render_bench(const RenderBenchOptions& o) {
             stats.hair_pixels ? double(stats.fragments) / double(stats.hair_pixels) : 0.0;
         j["reference_fragments_per_pixel_mean"] = e.hair_pixels ? double(ref_fragments) / double(e.hair_pixels) : 0.0;
         j["reference_cpu_s"] = ref_s;
+        if (o.error_vs_full) {
+          // The same frame (same options and frame count; the simulation is deterministic) drawn with every strand
+          // and captured: its reference is what the scene is, so the LOD layer's error against it is what LOD costs
+          // (the full layer's own error against it, full_error_*, is the rasterizer's share).
+          demo::Options df = d;
+          df.lod_start = df.lod_end = 0.0f;
+          df.lod_target_px = 0.0f;
+          df.raster_flags = TVK_RASTER_CAPTURE | shade_flag;
+          df.pass_timestamps = false;
+          const reference::HairLayer layer = reference::layer_from_half(cap.width, cap.height, cap.layer);
+          demo::DemoApp full_app(dev, df);
+          full_app.run(o.warmup + o.frames + 1, [](demo::FrameReport&) {});
+          TvkRasterCapture full{};
+          if (tressvk_get_raster_capture(full_app.renderer(), &full) != TVK_SUCCESS)
+            throw std::runtime_error(tressvk_last_error(full_app.plugin()));
+          const reference::StrandRasterInput fin{full.width, full.height, full.vertices_per_strand, full.strands,
+                                                 full.vertices, full.host_depth};
+          const reference::HairLayer full_ref = reference::render_strands_reference(fin);
+          const reference::LayerError ef = reference::compare_layers(layer, full_ref);
+          const reference::LayerError ff =
+              reference::compare_layers(reference::layer_from_half(full.width, full.height, full.layer), full_ref);
+          j["error_vs_full_mean"] = ef.mean;
+          j["error_vs_full_p99"] = ef.p99;
+          j["error_vs_full_max"] = ef.max;
+          j["error_vs_full_hair_pixels"] = ef.hair_pixels;
+          j["full_strands"] = full.strands;
+          j["full_error_mean"] = ff.mean;
+          j["full_error_p99"] = ff.p99;
+          // Coverage: the summed alpha of the drawn layer over that of the full reference.
+          double sum = 0.0, sum_full = 0.0;
+          for (size_t p = 3; p < layer.rgba.size(); p += 4) sum += layer.rgba[p];
+          for (size_t p = 3; p < full_ref.rgba.size(); p += 4) sum_full += full_ref.rgba[p];
+          j["coverage_vs_full"] = sum_full > 0.0 ? sum / sum_full : 0.0;
+        }
         j["dropped_entries"] = stats.dropped_entries;
         j["dropped_slice_entries"] = stats.dropped_slice_entries;
         j["sliced_tiles"] = stats.sliced_tiles;

@@ -245,8 +245,14 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   light.orthographic = 1;
   light.width = light.height = kShadowMapSize;
   TvkLodSettings lod{};
-  if (params_.has_lod && options_.lod_start <= 0.0f && params_.lod.end_distance > params_.lod.start_distance) lod = params_.lod;
-  if (options_.lod_start > 0.0f && options_.lod_end > options_.lod_start) {
+  if (params_.has_lod && options_.lod_start <= 0.0f && options_.lod_target_px <= 0.0f &&
+      (params_.lod.end_distance > params_.lod.start_distance || params_.lod.target_width_px > 0.0f))
+    lod = params_.lod;
+  if (options_.lod_target_px > 0.0f) {
+    lod = TvkLodSettings{};
+    lod.target_width_px = options_.lod_target_px;
+    lod.min_fraction = options_.lod_min_fraction;
+  } else if (options_.lod_start > 0.0f && options_.lod_end > options_.lod_start) {
     lod.start_distance = options_.lod_start;
     lod.end_distance = options_.lod_end;
     lod.min_fraction = options_.lod_min_fraction;

@@ -50,6 +50,7 @@ struct Options {
   float lod_start = 0.0f;         // m; LOD from start to end distance down to lod_min_fraction (0 = off)
   float lod_end = 0.0f;
   float lod_min_fraction = 0.25f;
+  float lod_target_px = 0.0f;     // > 0: coverage-driven LOD (TvkLodSettings::target_width_px; replaces the distances)
   uint32_t guides = 1200;         // bundled groom: guides and follow hairs per guide
   uint32_t follows = 7;
   std::array<double, 3> world_offset{};  // m: where the scene sits in the world (precision far from the origin)

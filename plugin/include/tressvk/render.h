@@ -113,13 +113,20 @@ typedef struct TvkView {
   uint32_t width, height;             /* viewport in pixels (quad widths and coverage are computed in pixels) */
 } TvkView;
 
-/* Level of detail: beyond start_distance (eye to the instance's origin), fewer strands are drawn, down to
- * min_fraction of them at end_distance, each wider by 1/fraction so that the hair keeps its coverage. The strands
- * drawn are a prefix of the baked LOD order (an even thinning). Zero-initialised = LOD off. */
+/* Level of detail: fewer strands are drawn, each wider by 1/fraction so that the hair keeps its coverage. The strands
+ * drawn are a prefix of the baked LOD order (an even thinning). Two modes:
+ * - by distance (target_width_px = 0): beyond start_distance (eye to the instance's origin), down to min_fraction
+ *   of the strands at end_distance;
+ * - by coverage (target_width_px > 0): the fraction is the strands' projected root width in pixels at the
+ *   instance's origin (the widest material's strand_width, in the camera's view) over target_width_px, clamped to
+ *   [min_fraction, 1]: sub-pixel strands are thinned until the drawn ones are about target_width_px wide, wider
+ *   strands are all drawn (start_distance and end_distance are not used; min_fraction 0 = no floor).
+ * Zero-initialised = LOD off. docs/rendering.md "Level of detail" gives the error of each against all strands. */
 typedef struct TvkLodSettings {
   float start_distance;               /* m */
   float end_distance;                 /* m, > start_distance */
   float min_fraction;                 /* 0..1 */
+  float target_width_px;              /* > 0: coverage-driven LOD (see above); 0: by distance */
 } TvkLodSettings;
 
 typedef struct TvkDrawInfo {

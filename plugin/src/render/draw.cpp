@@ -49,6 +49,20 @@ double lod_fraction(const TvkLodSettings& lod, double distance) {
   return 1.0 + t * (double{lod.min_fraction} - 1.0);
 }
 
+// Coverage-driven LOD: the fraction that makes the drawn strands about target_width_px wide where the instance's
+// origin projects (the same pixels-per-metre as vertex.comp's width: the view-projection's x scale over clip w),
+// clamped to [min_fraction, 1]. All strands when the origin is behind the eye (no scale to speak of).
+double lod_coverage_fraction(const TvkLodSettings& lod, const TvkView& view, const std::array<double, 3>& origin,
+                             float root_width) {
+  const double* m = view.view_projection;
+  const double w = m[3] * origin[0] + m[7] * origin[1] + m[11] * origin[2] + m[15];
+  if (!(w > 1e-9) || !(root_width > 0.0f)) return 1.0;
+  const double px_per_metre = std::sqrt(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]) * 0.5 * view.width / w;
+  const double width_px = double{root_width} * px_per_metre;
+  const double floor = std::clamp(double{lod.min_fraction}, 0.0, 1.0);
+  return std::clamp(width_px / double{lod.target_width_px}, floor, 1.0);
+}
+
 }  // namespace
 
 TvkResult begin_call(TvkRenderer_T& r, const char* fn) {
@@ -94,8 +108,20 @@ TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_
   const uint32_t guides = asset.cpu.guide_count();
   const uint32_t total = asset.cpu.total_strands();
   const TvkView& lod_view = (shadow_pass && info->lod_view) ? *info->lod_view : view;
-  const double dx = lod_view.eye[0] - origin[0], dy = lod_view.eye[1] - origin[1], dz = lod_view.eye[2] - origin[2];
-  const double fraction = lod_fraction(info->lod, std::sqrt(dx * dx + dy * dy + dz * dz));
+  double fraction = 1.0;
+  if (info->lod.target_width_px > 0.0f) {
+    float widest = 0.0f;
+    const TvkHairMaterial default_material = TVK_HAIR_MATERIAL_DEFAULT_INIT;
+    const uint32_t used = std::max<uint32_t>({1u, static_cast<uint32_t>(asset.cpu.groups.size()), info->material_count});
+    for (uint32_t g = 0; g < std::min<uint32_t>(used, TVK_MAX_MATERIALS); ++g)
+      widest = std::max(widest, (!info->materials || info->material_count == 0)
+                                    ? default_material.strand_width
+                                    : info->materials[std::min(g, info->material_count - 1)].strand_width);
+    fraction = lod_coverage_fraction(info->lod, lod_view, origin, widest);
+  } else {
+    const double dx = lod_view.eye[0] - origin[0], dy = lod_view.eye[1] - origin[1], dz = lod_view.eye[2] - origin[2];
+    fraction = lod_fraction(info->lod, std::sqrt(dx * dx + dy * dy + dz * dz));
+  }
   drawn = std::clamp(static_cast<uint32_t>(std::ceil(fraction * total)), 1u, total);
   dc.counts[0] = n;
   dc.counts[1] = guides;
