@@ -71,10 +71,7 @@ TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out) {
   out->hair_pixels = c[5];
   out->sliced_tiles = c[6];
   out->split_tiles = c[7];
-  if (s->shadow_readback) {
-    vmaInvalidateAllocation(ctx.allocator, s->shadow_readback.allocation, 0, VK_WHOLE_SIZE);
-    out->shadow_samples_outside = *static_cast<const uint32_t*>(s->shadow_readback.mapped);
-  }
+  out->shadow_samples_outside = c[kCounterCount];  // the shadow call's counter (raster.cpp copies it)
   out->memory_bytes = memory_bytes(*s);
   out->entry_capacity = s->entry_capacity;
   out->slice_capacity = kSliceCapacity;

@@ -257,7 +257,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
     res = grow(ctx, s.dom, 4ull * kDomSize * kDomSize * (1 + kDomLayers), storage, Memory::device,
                "hair deep opacity map");
   if (res == TVK_SUCCESS)
-    res = grow(ctx, s.stats_readback, 4 * kCounterCount, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host_readback,
+    res = grow(ctx, s.stats_readback, 4 * kCounterCount + 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host_readback,
                "hair compute statistics");
   // The capture depth binding always needs a buffer; a pixel-sized one only when capturing.
   if (res == TVK_SUCCESS)
@@ -296,7 +296,7 @@ void destroy(TvkRenderer_T& r) {
   if (s.set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.set_layout, c.info.allocator);
   if (s.composite_set_layout) c.vk.vkDestroyDescriptorSetLayout(dev, s.composite_set_layout, c.info.allocator);
   if (s.sampler) c.vk.vkDestroySampler(dev, s.sampler, c.info.allocator);
-  for (GpuBuffer* b : {&s.split_items, &s.partials, &s.shadow_depth, &s.shadow_readback, &s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
+  for (GpuBuffer* b : {&s.split_items, &s.partials, &s.shadow_depth, &s.dom, &s.verts, &s.tiles, &s.entries, &s.counters, &s.image, &s.capture_depth, &s.stats_readback,
                        &s.capture_verts, &s.capture_host_depth, &s.capture_image})
     destroy_buffer(c, *b);
   delete r.compute;

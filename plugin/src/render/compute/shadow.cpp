@@ -17,8 +17,8 @@ struct Rect {
 };
 
 // The texels of a width x height map the hair can touch this frame, on the CPU and conservative: the bounding sphere
-// of the instance's strands (hair_bound_radius) as a box around its simulation origin, its 8 corners projected through
-// the light's view-projection (a projective map sends the box into the hull of its corners while w > 0), grown by
+// of the instance's strands (hair_bound_radius) around its simulation origin, projected through the light's
+// view-projection (bounds of its clip coordinates, below), grown by
 // the widest strand's half width in texels as shadow_depth.comp computes it (at the smallest w) and 2 texels for its
 // 0.75-texel minimum and rounding, clamped to the map. The whole map when no bound is known or a corner is behind
 // the light; empty when the box lies outside the map or the depth range.
@@ -32,20 +32,27 @@ Rect hair_rect(const TvkInstance_T& inst, const TvkView& light, const DrawConsta
   for (int i = 0; i < 16; ++i) m[i] = light.view_projection[i];
   for (int row = 0; row < 4; ++row)
     m[12 + row] += m[row] * inst.sim_origin[0] + m[4 + row] * inst.sim_origin[1] + m[8 + row] * inst.sim_origin[2];
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300}, zlo = 1e300, zhi = -1e300, wmin = 1e300;
-  for (int c = 0; c < 8; ++c) {
-    const double p[3] = {(c & 1) ? radius : -radius, (c & 2) ? radius : -radius, (c & 4) ? radius : -radius};
-    double clip[4];
-    for (int row = 0; row < 4; ++row) clip[row] = m[12 + row] + m[row] * p[0] + m[4 + row] * p[1] + m[8 + row] * p[2];
-    if (!(clip[3] > 1e-9)) return whole;
-    wmin = std::min(wmin, clip[3]);
-    const double t[2] = {(clip[0] / clip[3] * 0.5 + 0.5) * width, (clip[1] / clip[3] * 0.5 + 0.5) * height};
-    for (int k = 0; k < 2; ++k) {
-      lo[k] = std::min(lo[k], t[k]);
-      hi[k] = std::max(hi[k], t[k]);
-    }
-    zlo = std::min(zlo, clip[2] / clip[3]);
-    zhi = std::max(zhi, clip[2] / clip[3]);
+  // Clip coordinates of the sphere's points lie in [c - radius |row|, c + radius |row|] per row (Cauchy-Schwarz),
+  // and x / w is monotonic in x and in w while w > 0: the corners of those intervals bound the sphere's image.
+  double c[4], extent[4];
+  for (int row = 0; row < 4; ++row) {
+    c[row] = m[12 + row];
+    extent[row] = radius * std::sqrt(m[row] * m[row] + m[4 + row] * m[4 + row] + m[8 + row] * m[8 + row]);
+  }
+  const double wmin = c[3] - extent[3], wmax = c[3] + extent[3];
+  if (!(wmin > 1e-9)) return whole;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    const double q[4] = {(c[k] - extent[k]) / wmin, (c[k] - extent[k]) / wmax, (c[k] + extent[k]) / wmin,
+                         (c[k] + extent[k]) / wmax};
+    lo[k] = std::min({q[0], q[1], q[2], q[3]});
+    hi[k] = std::max({q[0], q[1], q[2], q[3]});
+  }
+  const double zlo = lo[2], zhi = hi[2];
+  for (int k = 0; k < 2; ++k) {
+    const double size = k == 0 ? width : height;
+    lo[k] = (lo[k] * 0.5 + 0.5) * size;
+    hi[k] = (hi[k] * 0.5 + 0.5) * size;
   }
   if (zhi < 0.0 || zlo > 1.0) return Rect{};
   float widest = 0.0f;  // root width x LOD widening, metres
@@ -85,10 +92,7 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
                            Memory::device, "hair shadow depth");
       res != TVK_SUCCESS)
     return res;
-  if (TvkResult res = grow(ctx, s.shadow_readback, 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host_readback,
-                           "hair shadow statistics");
-      res != TVK_SUCCESS)
-    return res;
+  s.shadow_counter_offset = bytes;  // the raster call copies the counter into its statistics
   const VkDeviceSize offset = store_constants(r, dc);
   const TvkInstance_T& inst = *info->draw->instance;
 
@@ -174,10 +178,6 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
   part = ctx.time_begin(cmd);
   ctx.vk.vkCmdCopyBufferToImage(cmd, s.shadow_depth.buffer, info->shadow_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                 1, &region);
-  const VkBufferCopy outside{bytes, 0, 4};
-  ctx.vk.vkCmdCopyBuffer(cmd, s.shadow_depth.buffer, s.shadow_readback.buffer, 1, &outside);
-  memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                 VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   ctx.time_end(cmd, part, "render.shadow_copy_back");
   ctx.time_end(cmd, timed, "render.shadow");
   r.last_drawn_strands = drawn;
