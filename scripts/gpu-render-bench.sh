@@ -95,3 +95,14 @@ for res in 1080p 2160p; do
   [ -n "$RATBOY" ] && row ratboy4-compute-$res-lodauto --asset "$RATBOY" $VIEW $TIMED --animate shake --lod-target-px $LODPX $FULL
   row 100k-compute-$res-lodauto --sample sphere --guides 12500 --follows 7 --vertices 32 $VIEW $TIMED --lod-target-px $LODPX $FULL
 done
+# Far views, where the strands are a fraction of a pixel (the camera 4x the framing distance: the sphere sample and
+# 100,000 x 32, 2 px strands at 1080p, become 0.5 px): every strand, then the coverage LOD against all strands.
+for scene in sample 100k; do
+  if [ $scene = sample ]; then G="--sample sphere"; else G="--sample sphere --guides 12500 --follows 7 --vertices 32"; fi
+  row $scene-compute-1080p-far4 $G $HD $TIMED --zoom 4 $NP
+  row $scene-compute-1080p-far4-lodauto $G $HD $TIMED --zoom 4 --lod-target-px $LODPX $FULL
+done
+# The shadow call where the hair covers a small part of the map (the map 4x wider than the scene, as a cascade is):
+# only the rectangle the hair can reach is copied out and back (compare the -passes rows' shadow_copy_* with the
+# ratboy4-compute-1080p-passes row).
+[ -n "$RATBOY" ] && twin ratboy4-compute-1080p-wideshadow --asset "$RATBOY" $HD $TIMED --animate shake --shadow-extent 6.4

@@ -86,6 +86,12 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
   c->add_flag("--error-vs-full", o.error_vs_full,
               "compute path: also compare the drawn layer with the sorted reference of ALL strands (the same frame "
               "rendered without LOD; error_vs_full_*), so a LOD row states what thinning costs");
+  c->add_option("--zoom", o.zoom, "camera distance over the distance that frames the scene")
+      ->check(CLI::Range(0.05, 100.0))->capture_default_str();
+  c->add_option("--shadow-extent", o.shadow_extent,
+                "the shadow map's half-size over the scene radius (larger: the hair covers less of the map, as in a "
+                "cascade)")
+      ->check(CLI::Range(0.5f, 100.0f))->capture_default_str();
   c->add_option("--animate", o.animate, "none, turn, shake or run")->check(CLI::IsMember({"none", "turn", "shake", "run"}))
       ->capture_default_str();
   c->add_option("--json", o.json, "write the results as JSON");
@@ -120,6 +126,9 @@ int run_render_bench(const RenderBenchOptions& o) {
     // Where the hair's time goes, pass by pass (gpu_ms_passes), unless --no-pass-timestamps.
     d.pass_timestamps = o.path == "compute" && !o.no_pass_timestamps;
     d.sample = o.sample == "sphere" ? demo::Sample::sphere : demo::Sample::head;
+    d.shadow_extent = o.shadow_extent;
+    demo::ViewControl view;
+    view.zoom = o.zoom;
     std::string groom = o.asset.empty() ? (o.sample == "sphere" ? "sphere sample" : "bundled head sample")
                                         : std::filesystem::path(o.asset).filename().string();
     std::filesystem::path temp;
@@ -156,6 +165,7 @@ int run_render_bench(const RenderBenchOptions& o) {
     }
 
     demo::DemoApp app(dev, d);
+    app.set_view(view);
     const uint32_t shade_flag = o.shade == "fragment" ? TVK_RASTER_SHADE_PER_FRAGMENT : 0u;
     app.set_raster_flags(shade_flag);
     std::vector<double> hair_shadow, hair, shadow, shading;
@@ -178,6 +188,8 @@ int run_render_bench(const RenderBenchOptions& o) {
     j["width"] = o.width;
     j["height"] = o.height;
     j["frames"] = o.frames;
+    j["zoom"] = o.zoom;
+    j["shadow_extent"] = o.shadow_extent;
     j["pass_timestamps"] = d.pass_timestamps;
     j["strands_drawn"] = strands;
     j["strands_total"] = app.asset_info().total_strands;
@@ -238,6 +250,7 @@ int run_render_bench(const RenderBenchOptions& o) {
           df.pass_timestamps = false;
           const reference::HairLayer layer = reference::layer_from_half(cap.width, cap.height, cap.layer);
           demo::DemoApp full_app(dev, df);
+          full_app.set_view(view);
           full_app.run(o.warmup + o.frames + 1, [](demo::FrameReport&) {});
           TvkRasterCapture full{};
           if (tressvk_get_raster_capture(full_app.renderer(), &full) != TVK_SUCCESS)
@@ -265,6 +278,7 @@ int run_render_bench(const RenderBenchOptions& o) {
         j["dropped_slice_entries"] = stats.dropped_slice_entries;
         j["sliced_tiles"] = stats.sliced_tiles;
         j["split_tiles"] = stats.split_tiles;
+        j["shadow_samples_outside"] = stats.shadow_samples_outside;
         j["entries"] = stats.entries_requested;
       }
     }
@@ -281,6 +295,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       dc.raster_flags = TVK_RASTER_CAPTURE;
       dc.pass_timestamps = false;
       demo::DemoApp capture_app(dev, dc);
+      capture_app.set_view(view);
       engine::Pixels compute_frame;
       uint32_t kc = 0;
       capture_app.run(before + 1, [&](demo::FrameReport& f) {
@@ -297,6 +312,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       db.draw_hair = false;
       db.pass_timestamps = false;
       demo::DemoApp background_app(dev, db);
+      background_app.set_view(view);
       uint32_t k = 0;
       background_app.run(before + 1, [&](demo::FrameReport& f) {
         if (++k == before + 1) background = std::move(f.pixels);
@@ -308,6 +324,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       dcb.draw_hair = false;
       dcb.raster_flags = 0;
       demo::DemoApp compute_background_app(dev, dcb);
+      compute_background_app.set_view(view);
       engine::Pixels compute_background;
       uint32_t kb = 0;
       compute_background_app.run(before + 1, [&](demo::FrameReport& f) {
