@@ -50,13 +50,14 @@ void main() {
     const uint taps = uint(ceil(half_width));
     for (int o = -int(taps); o <= int(taps); ++o) {
       const vec2 y = x + across * (half_width * float(o) / float(taps));
-      if (any(lessThan(y, vec2(0.0))) || any(greaterThanEqual(y, vec2(pc.size.xy)))) continue;
-      const uvec2 r = uvec2(y) - pc.size.zw;  // wraps below the rectangle
-      if (r.x >= pc.params.x || r.y >= pc.params.z) {  // never, the rectangle being conservative: counted
-        atomicAdd(depth[pc.size.x * pc.size.y], 1u);
+      const vec2 q = y - vec2(pc.size.zw);  // in the rectangle's texels
+      if (any(lessThan(q, vec2(0.0))) || any(greaterThanEqual(q, vec2(pc.params.xz)))) {
+        // Inside the map but outside the rectangle: never, the rectangle being conservative; counted.
+        if (all(greaterThanEqual(y, vec2(0.0))) && all(lessThan(y, vec2(pc.size.xy))))
+          atomicAdd(depth[pc.size.x * pc.size.y], 1u);
         continue;
       }
-      const uint texel = r.y * pc.params.x + r.x;
+      const uint texel = uint(q.y) * pc.params.x + uint(q.x);
       // Read first: most samples of dense hair are behind what the texel holds, and skip the atomic.
       if (depth[texel] > floatBitsToUint(z)) atomicMin(depth[texel], floatBitsToUint(z));
     }
