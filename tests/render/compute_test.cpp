@@ -229,8 +229,9 @@ TEST_CASE("render: coverage-driven LOD thins sub-pixel strands, keeps their cove
   tressvk::engine::write_png(out_dir() / "compute_lod_coverage_thin.png", thin.pixels);
   INFO("strands drawn " << thin.input.strands << " of " << all.input.strands << " (at twice the distance "
                         << thin_far.input.strands << "); LOD vs all strands: mean " << e.mean << "/255, p99 " << e.p99
-                        << "/255, max " << e.max << "/255 over " << e.hair_pixels << " hair pixels (the full frame: mean "
-                        << e_full.mean << ", p99 " << e_full.p99 << "); summed alpha " << alpha << " vs " << alpha_full);
+                        << "/255, max " << e.max << "/255 over " << e.hair_pixels
+                        << " hair pixels (the full frame: mean " << e_full.mean << ", p99 " << e_full.p99
+                        << "); summed alpha " << alpha << " vs " << alpha_full);
   CHECK(e.hair_pixels > 1000);
   CHECK(thin.input.strands < all.input.strands / 2);
   CHECK(thin.input.strands > all.input.strands / 5);

@@ -230,10 +230,12 @@ TVK_API TvkResult tressvk_cmd_composite_hair(TvkRenderer renderer, VkCommandBuff
  * camera, as for tressvk_cmd_draw_shadow; strands are at least 1.5 texels wide, as there.
  * Synchronization contract: the map (D32_SFLOAT, single sample, created with TRANSFER_SRC and TRANSFER_DST usage)
  * comes in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: the host makes its depth writes visible to ALL_TRANSFER /
- * TRANSFER_READ with that transition first. The call copies the map into a renderer-owned buffer, transitions the
- * image to TRANSFER_DST_OPTIMAL (an image barrier of its own), keeps the nearer of the map and the hair per texel
- * in compute, and copies the result back: the map is left in TRANSFER_DST_OPTIMAL, and the host orders the call's
- * ALL_TRANSFER / TRANSFER_WRITE before its own reads with its transition to its read layout. Its first barrier
+ * TRANSFER_READ with that transition first. The call copies the rectangle of the map the hair can reach this frame
+ * (computed on the CPU, conservative; the whole map for a skinned instance; docs/rendering.md) into a renderer-owned
+ * buffer, transitions the image to TRANSFER_DST_OPTIMAL (an image barrier of its own), keeps the nearer of the map
+ * and the hair per texel in compute, and copies the rectangle back (texels outside it are not written; with no
+ * rectangle, only the transition is recorded): the map is left in TRANSFER_DST_OPTIMAL, and the host orders the
+ * call's ALL_TRANSFER / TRANSFER_WRITE before its own reads with its transition to its read layout. Its first barrier
  * orders it after the previous frame's copies of this renderer. State disturbed: the bound compute
  * pipeline, compute descriptor set 0, push constants. */
 typedef struct TvkShadowRasterInfo {

@@ -112,7 +112,8 @@ TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_
   if (info->lod.target_width_px > 0.0f) {
     float widest = 0.0f;
     const TvkHairMaterial default_material = TVK_HAIR_MATERIAL_DEFAULT_INIT;
-    const uint32_t used = std::max<uint32_t>({1u, static_cast<uint32_t>(asset.cpu.groups.size()), info->material_count});
+    const uint32_t used =
+        std::max<uint32_t>({1u, static_cast<uint32_t>(asset.cpu.groups.size()), info->material_count});
     for (uint32_t g = 0; g < std::min<uint32_t>(used, TVK_MAX_MATERIALS); ++g)
       widest = std::max(widest, (!info->materials || info->material_count == 0)
                                     ? default_material.strand_width

@@ -118,7 +118,8 @@ TvkResult record_shadow(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkShadowRa
   const uint32_t n = dc.counts[0];
   const uint64_t segments = uint64_t{drawn} * (n - 1);
   const Rect rect = hair_rect(inst, *info->draw->view, dc, width, height);
-  const Push push{{width, height, rect.x, rect.y}, {rect.width, drawn, rect.height, static_cast<uint32_t>(segments)}, {}};
+  const Push push{{width, height, rect.x, rect.y},
+                  {rect.width, drawn, rect.height, static_cast<uint32_t>(segments)}, {}};
   VkBufferImageCopy region{};  // the rectangle, packed in the buffer (row length = its width)
   region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
   region.imageOffset = {static_cast<int32_t>(rect.x), static_cast<int32_t>(rect.y), 0};
