@@ -18,10 +18,10 @@ struct Rect {
 
 // The texels of a width x height map the hair can touch this frame, on the CPU and conservative: the bounding sphere
 // of the instance's strands (hair_bound_radius) around its simulation origin, projected through the light's
-// view-projection (bounds of its clip coordinates, below), grown by
-// the widest strand's half width in texels as shadow_depth.comp computes it (at the smallest w) and 2 texels for its
-// 0.75-texel minimum and rounding, clamped to the map. The whole map when no bound is known or a corner is behind
-// the light; empty when the box lies outside the map or the depth range.
+// view-projection (bounds of its clip coordinates, below), grown by the widest strand's half width in texels as
+// shadow_depth.comp computes it (at the smallest w) and 2 texels for its 0.75-texel minimum and rounding, clamped to
+// the map. The whole map when no bound is known or the sphere reaches behind the light (w <= 0); empty when it lies
+// outside the map or the depth range.
 Rect hair_rect(const TvkInstance_T& inst, const TvkView& light, const DrawConstants& dc, uint32_t width,
                uint32_t height) {
   const Rect whole{0, 0, width, height};
