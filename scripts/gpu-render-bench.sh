@@ -25,7 +25,7 @@ row() {  # name, then bench arguments
   if [ -n "${ROWS:-}" ] && ! [[ $name =~ $ROWS ]]; then return 0; fi
   echo "== $name: $*" >> "$OUT/summary.txt"
   if "$BENCH" render "$@" --json "$OUT/$name.json" > "$OUT/$name.log" 2>&1; then
-    grep -E '"(device|shading|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|strands_drawn)"' "$OUT/$name.json" |
+    grep -E '"(device|shading|gpu_ms_shadow|gpu_ms_shading|error_mean|error_p99|error_vs_full_mean|error_vs_full_p99|coverage_vs_full|strands_drawn)"' "$OUT/$name.json" |
       tr -d '\n' >> "$OUT/summary.txt"
     echo >> "$OUT/summary.txt"
     sed -n '/"gpu_ms_passes"/,/}/p' "$OUT/$name.json" | tr -d '\n ' >> "$OUT/summary.txt"
@@ -80,3 +80,29 @@ row sample-compute-1080p-lod50 --sample sphere $HD $TIMED --lod-fraction 0.5 $NP
 row sample-compute-1080p-lod25 --sample sphere $HD $TIMED --lod-fraction 0.25 $NP
 twin 100k-compute-1080p-lod25 --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25
 row 100k-compute-2160p --sample sphere --guides 12500 --follows 7 --vertices 32 --width 3840 --height 2160 $TIMED $NP
+
+# LOD against ALL strands (--error-vs-full: the same frame rendered without LOD is captured and its sorted reference
+# is what the LOD frame is compared with, error_vs_full_*): the fixed fractions above and the coverage-driven LOD
+# (--lod-target-px LODPX, default 1: sub-pixel strands thinned until the drawn ones are about 1 px wide).
+LODPX=${LODPX:-1}
+FULL="--error-vs-full $NP"
+row sample-compute-1080p-lod25-vsfull --sample sphere $HD $TIMED --lod-fraction 0.25 $FULL
+row 100k-compute-1080p-lod25-vsfull --sample sphere --guides 12500 --follows 7 --vertices 32 $HD $TIMED --lod-fraction 0.25 $FULL
+for res in 1080p 2160p; do
+  if [ $res = 1080p ]; then VIEW=$HD; else VIEW="--width 3840 --height 2160"; fi
+  row sample-compute-$res-lodauto --sample sphere $VIEW $TIMED --lod-target-px $LODPX $FULL
+  row head-compute-$res-lodauto --sample head $VIEW $TIMED --lod-target-px $LODPX $FULL
+  [ -n "$RATBOY" ] && row ratboy4-compute-$res-lodauto --asset "$RATBOY" $VIEW $TIMED --animate shake --lod-target-px $LODPX $FULL
+  row 100k-compute-$res-lodauto --sample sphere --guides 12500 --follows 7 --vertices 32 $VIEW $TIMED --lod-target-px $LODPX $FULL
+done
+# Far views, where the strands are a fraction of a pixel (the camera 4x the framing distance: the sphere sample and
+# 100,000 x 32, 2 px strands at 1080p, become 0.5 px): every strand, then the coverage LOD against all strands.
+for scene in sample 100k; do
+  if [ $scene = sample ]; then G="--sample sphere"; else G="--sample sphere --guides 12500 --follows 7 --vertices 32"; fi
+  row $scene-compute-1080p-far4 $G $HD $TIMED --zoom 4 $NP
+  row $scene-compute-1080p-far4-lodauto $G $HD $TIMED --zoom 4 --lod-target-px $LODPX $FULL
+done
+# The shadow call where the hair covers a small part of the map (the map 4x wider than the scene, as a cascade is):
+# only the rectangle the hair can reach is copied out and back (compare the -passes rows' shadow_copy_* with the
+# ratboy4-compute-1080p-passes row).
+[ -n "$RATBOY" ] && twin ratboy4-compute-1080p-wideshadow --asset "$RATBOY" $HD $TIMED --animate shake --shadow-extent 6.4

@@ -80,6 +80,18 @@ CLI::App* add_render_subcommand(CLI::App& app, RenderBenchOptions& o) {
       ->capture_default_str();
   c->add_option("--lod-fraction", o.lod_fraction, "draw this fraction of the strands, widened to keep coverage")
       ->check(CLI::Range(0.01f, 1.0f));
+  c->add_option("--lod-target-px", o.lod_target_px,
+                "coverage-driven LOD: thin sub-pixel strands until the drawn ones are about this many pixels wide")
+      ->check(CLI::Range(0.0f, 64.0f));
+  c->add_flag("--error-vs-full", o.error_vs_full,
+              "compute path: also compare the drawn layer with the sorted reference of ALL strands (the same frame "
+              "rendered without LOD; error_vs_full_*), so a LOD row states what thinning costs");
+  c->add_option("--zoom", o.zoom, "camera distance over the distance that frames the scene")
+      ->check(CLI::Range(0.05, 100.0))->capture_default_str();
+  c->add_option("--shadow-extent", o.shadow_extent,
+                "the shadow map's half-size over the scene radius (larger: the hair covers less of the map, as in a "
+                "cascade)")
+      ->check(CLI::Range(0.5f, 100.0f))->capture_default_str();
   c->add_option("--animate", o.animate, "none, turn, shake or run")->check(CLI::IsMember({"none", "turn", "shake", "run"}))
       ->capture_default_str();
   c->add_option("--json", o.json, "write the results as JSON");
@@ -114,6 +126,9 @@ int run_render_bench(const RenderBenchOptions& o) {
     // Where the hair's time goes, pass by pass (gpu_ms_passes), unless --no-pass-timestamps.
     d.pass_timestamps = o.path == "compute" && !o.no_pass_timestamps;
     d.sample = o.sample == "sphere" ? demo::Sample::sphere : demo::Sample::head;
+    d.shadow_extent = o.shadow_extent;
+    demo::ViewControl view;
+    view.zoom = o.zoom;
     std::string groom = o.asset.empty() ? (o.sample == "sphere" ? "sphere sample" : "bundled head sample")
                                         : std::filesystem::path(o.asset).filename().string();
     std::filesystem::path temp;
@@ -137,13 +152,20 @@ int run_render_bench(const RenderBenchOptions& o) {
       d.guides = o.guides;
       d.follows = o.follows;
     }
+    if (o.lod_fraction < 1.0f && o.lod_target_px > 0.0f)
+      throw std::runtime_error("--lod-fraction and --lod-target-px are two LOD modes: give one");
     if (o.lod_fraction < 1.0f) {  // full thinning from the start: every frame draws lod_fraction of the strands
       d.lod_start = 1e-4f;
       d.lod_end = 2e-4f;
       d.lod_min_fraction = o.lod_fraction;
     }
+    if (o.lod_target_px > 0.0f) {
+      d.lod_target_px = o.lod_target_px;
+      d.lod_min_fraction = 0.0f;  // no floor: the coverage alone decides
+    }
 
     demo::DemoApp app(dev, d);
+    app.set_view(view);
     const uint32_t shade_flag = o.shade == "fragment" ? TVK_RASTER_SHADE_PER_FRAGMENT : 0u;
     app.set_raster_flags(shade_flag);
     std::vector<double> hair_shadow, hair, shadow, shading;
@@ -166,6 +188,8 @@ int run_render_bench(const RenderBenchOptions& o) {
     j["width"] = o.width;
     j["height"] = o.height;
     j["frames"] = o.frames;
+    j["zoom"] = o.zoom;
+    j["shadow_extent"] = o.shadow_extent;
     j["pass_timestamps"] = d.pass_timestamps;
     j["strands_drawn"] = strands;
     j["strands_total"] = app.asset_info().total_strands;
@@ -215,10 +239,46 @@ int run_render_bench(const RenderBenchOptions& o) {
             stats.hair_pixels ? double(stats.fragments) / double(stats.hair_pixels) : 0.0;
         j["reference_fragments_per_pixel_mean"] = e.hair_pixels ? double(ref_fragments) / double(e.hair_pixels) : 0.0;
         j["reference_cpu_s"] = ref_s;
+        if (o.error_vs_full) {
+          // The same frame (same options and frame count; the simulation is deterministic) drawn with every strand
+          // and captured: its reference is what the scene is, so the LOD layer's error against it is what LOD costs
+          // (the full layer's own error against it, full_error_*, is the rasterizer's share).
+          demo::Options df = d;
+          df.lod_start = df.lod_end = 0.0f;
+          df.lod_target_px = 0.0f;
+          df.raster_flags = TVK_RASTER_CAPTURE | shade_flag;
+          df.pass_timestamps = false;
+          const reference::HairLayer layer = reference::layer_from_half(cap.width, cap.height, cap.layer);
+          demo::DemoApp full_app(dev, df);
+          full_app.set_view(view);
+          full_app.run(o.warmup + o.frames + 1, [](demo::FrameReport&) {});
+          TvkRasterCapture full{};
+          if (tressvk_get_raster_capture(full_app.renderer(), &full) != TVK_SUCCESS)
+            throw std::runtime_error(tressvk_last_error(full_app.plugin()));
+          const reference::StrandRasterInput fin{full.width, full.height, full.vertices_per_strand, full.strands,
+                                                 full.vertices, full.host_depth};
+          const reference::HairLayer full_ref = reference::render_strands_reference(fin);
+          const reference::LayerError ef = reference::compare_layers(layer, full_ref);
+          const reference::LayerError ff =
+              reference::compare_layers(reference::layer_from_half(full.width, full.height, full.layer), full_ref);
+          j["error_vs_full_mean"] = ef.mean;
+          j["error_vs_full_p99"] = ef.p99;
+          j["error_vs_full_max"] = ef.max;
+          j["error_vs_full_hair_pixels"] = ef.hair_pixels;
+          j["full_strands"] = full.strands;
+          j["full_error_mean"] = ff.mean;
+          j["full_error_p99"] = ff.p99;
+          // Coverage: the summed alpha of the drawn layer over that of the full reference.
+          double sum = 0.0, sum_full = 0.0;
+          for (size_t p = 3; p < layer.rgba.size(); p += 4) sum += layer.rgba[p];
+          for (size_t p = 3; p < full_ref.rgba.size(); p += 4) sum_full += full_ref.rgba[p];
+          j["coverage_vs_full"] = sum_full > 0.0 ? sum / sum_full : 0.0;
+        }
         j["dropped_entries"] = stats.dropped_entries;
         j["dropped_slice_entries"] = stats.dropped_slice_entries;
         j["sliced_tiles"] = stats.sliced_tiles;
         j["split_tiles"] = stats.split_tiles;
+        j["shadow_samples_outside"] = stats.shadow_samples_outside;
         j["entries"] = stats.entries_requested;
       }
     }
@@ -235,6 +295,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       dc.raster_flags = TVK_RASTER_CAPTURE;
       dc.pass_timestamps = false;
       demo::DemoApp capture_app(dev, dc);
+      capture_app.set_view(view);
       engine::Pixels compute_frame;
       uint32_t kc = 0;
       capture_app.run(before + 1, [&](demo::FrameReport& f) {
@@ -251,6 +312,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       db.draw_hair = false;
       db.pass_timestamps = false;
       demo::DemoApp background_app(dev, db);
+      background_app.set_view(view);
       uint32_t k = 0;
       background_app.run(before + 1, [&](demo::FrameReport& f) {
         if (++k == before + 1) background = std::move(f.pixels);
@@ -262,6 +324,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       dcb.draw_hair = false;
       dcb.raster_flags = 0;
       demo::DemoApp compute_background_app(dev, dcb);
+      compute_background_app.set_view(view);
       engine::Pixels compute_background;
       uint32_t kb = 0;
       compute_background_app.run(before + 1, [&](demo::FrameReport& f) {

@@ -21,6 +21,10 @@ struct RenderBenchOptions {
   std::string sample = "head";  // no --asset: the bundled head sample, or the sphere sample (long128 groom)
   uint32_t guides = 1200, follows = 7, vertices = 48;  // the sphere sample's groom
   float lod_fraction = 1.0f;    // < 1: coverage-preserving LOD down to this fraction of the strands
+  float lod_target_px = 0.0f;   // > 0: coverage-driven LOD (TvkLodSettings::target_width_px), no floor
+  bool error_vs_full = false;
+  double zoom = 1.0;            // camera distance over the framing distance (ViewControl::zoom)
+  float shadow_extent = 1.6f;   // the shadow map's half-size over the scene radius (demo::Options::shadow_extent)   // also the error against the reference of ALL strands (the frame without LOD)
   std::string animate = "turn";
   std::string json, png, device;
   bool validation = false;

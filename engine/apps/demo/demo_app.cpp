@@ -224,7 +224,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   view_proj_[frame.slot] = sf.view_proj;
   const TvkLight& key = scene_.lights[0];
   const glm::dvec3 light_dir = glm::normalize(glm::dvec3(key.direction[0], key.direction[1], key.direction[2]));
-  const double r = 1.6 * scene_.radius;
+  const double r = double{options_.shadow_extent} * scene_.radius;
   const glm::dvec3 light_eye = center - light_dir * (2.0 * r);
   const glm::dvec3 up = std::abs(light_dir.y) > 0.95 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   const double near_plane = 0.0, far_plane = 4.0 * r;
@@ -245,8 +245,14 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   light.orthographic = 1;
   light.width = light.height = kShadowMapSize;
   TvkLodSettings lod{};
-  if (params_.has_lod && options_.lod_start <= 0.0f && params_.lod.end_distance > params_.lod.start_distance) lod = params_.lod;
-  if (options_.lod_start > 0.0f && options_.lod_end > options_.lod_start) {
+  if (params_.has_lod && options_.lod_start <= 0.0f && options_.lod_target_px <= 0.0f &&
+      (params_.lod.end_distance > params_.lod.start_distance || params_.lod.target_width_px > 0.0f))
+    lod = params_.lod;
+  if (options_.lod_target_px > 0.0f) {
+    lod = TvkLodSettings{};
+    lod.target_width_px = options_.lod_target_px;
+    lod.min_fraction = options_.lod_min_fraction;
+  } else if (options_.lod_start > 0.0f && options_.lod_end > options_.lod_start) {
     lod.start_distance = options_.lod_start;
     lod.end_distance = options_.lod_end;
     lod.min_fraction = options_.lod_min_fraction;

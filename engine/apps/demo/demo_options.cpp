@@ -80,6 +80,10 @@ int parse_options(int argc, char** argv, Options& options) {
       ->check(CLI::Range(0.0f, 100000.0f));
   app.add_option("--lod-min-fraction", options.lod_min_fraction, "Hair LOD: fraction of strands drawn at --lod-end")
       ->check(CLI::Range(0.01f, 1.0f))->capture_default_str();
+  app.add_option("--lod-target-px", options.lod_target_px,
+                 "Hair LOD by coverage: thin sub-pixel strands until the drawn ones are about this many pixels wide "
+                 "(0 = off; --lod-min-fraction is the floor)")
+      ->check(CLI::Range(0.0f, 64.0f));
   app.add_option("--guides", options.guides, "Bundled groom: guide strands")->check(CLI::Range(16u, 100000u))
       ->capture_default_str();
   app.add_option("--follows", options.follows, "Bundled groom: follow strands per guide")

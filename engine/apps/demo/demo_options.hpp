@@ -47,9 +47,11 @@ struct Options {
   uint32_t raster_flags = 0;               // tests: TVK_RASTER_* flags of the compute path (capture, reverse)
   // Not on the command line of the default run, but used by tests and docs:
   float camera_distance = 0.0f;   // m from the framed centre; 0 = frame the scene
+  float shadow_extent = 1.6f;     // the shadow map's half-size over the scene's radius (larger: the hair covers less)
   float lod_start = 0.0f;         // m; LOD from start to end distance down to lod_min_fraction (0 = off)
   float lod_end = 0.0f;
   float lod_min_fraction = 0.25f;
+  float lod_target_px = 0.0f;     // > 0: coverage-driven LOD (TvkLodSettings::target_width_px; replaces the distances)
   uint32_t guides = 1200;         // bundled groom: guides and follow hairs per guide
   uint32_t follows = 7;
   std::array<double, 3> world_offset{};  // m: where the scene sits in the world (precision far from the origin)

@@ -128,6 +128,7 @@ Params parse_params(std::string_view text, std::string_view name) {
     {"start_distance", [&](const json& v, const std::string& f) { p.lod.start_distance = r.number(v, f, 0, 1e6); p.has_lod = true; }},
     {"end_distance", [&](const json& v, const std::string& f) { p.lod.end_distance = r.number(v, f, 0, 1e6); p.has_lod = true; }},
     {"min_fraction", [&](const json& v, const std::string& f) { p.lod.min_fraction = r.number(v, f, 0.01, 1); p.has_lod = true; }},
+    {"target_width_px", [&](const json& v, const std::string& f) { p.lod.target_width_px = r.number(v, f, 0, 64); p.has_lod = true; }},
   });
   if (p.has_lod && p.lod.end_distance > 0 && p.lod.end_distance <= p.lod.start_distance)
     r.fail("lod.end_distance", "must be greater than lod.start_distance");
@@ -175,7 +176,7 @@ std::string params_json(const Params& p) {
   j["wind"] = {{"direction", v3(w.direction)}, {"strength", shortest(w.strength)}, {"gust_amplitude", shortest(w.gust_amplitude)},
                {"gust_frequency", shortest(w.gust_frequency)}, {"cone_angle", shortest(w.cone_angle)}};
   j["lod"] = {{"start_distance", shortest(p.lod.start_distance)}, {"end_distance", shortest(p.lod.end_distance)},
-              {"min_fraction", shortest(p.lod.min_fraction)}};
+              {"min_fraction", shortest(p.lod.min_fraction)}, {"target_width_px", shortest(p.lod.target_width_px)}};
   return j.dump(2) + "\n";
 }
 

@@ -7,7 +7,7 @@
 //     "material":   { "base_color": [r, g, b], "tip_color": [r, g, b], "kd": 0.7, ... every TvkHairMaterial field },
 //     "wind":       { "direction": [1, 0, 0], "strength": 0, "gust_amplitude": 0.5, "gust_frequency": 0.5,
 //                     "cone_angle": 0.35 },
-//     "lod":        { "start_distance": 0, "end_distance": 0, "min_fraction": 0.25 } }
+//     "lod":        { "start_distance": 0, "end_distance": 0, "min_fraction": 0.25, "target_width_px": 0 } }
 //
 // Every section and field is optional (missing = the documented default, or the host's own choice for the
 // material's strand width). Unknown fields, wrong types and values out of range are errors naming the file and
@@ -33,7 +33,7 @@ struct Params {
   TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
   TvkHairMaterial material = TVK_HAIR_MATERIAL_DEFAULT_INIT;
   TvkWind wind = TVK_WIND_DEFAULT_INIT;
-  TvkLodSettings lod{0.0f, 0.0f, 0.25f};
+  TvkLodSettings lod{0.0f, 0.0f, 0.25f, 0.0f};
   // Which parts the file set (a host keeps its own choice for the others).
   bool has_strand_width = false, has_tip_width_ratio = false, has_wind = false, has_lod = false;
 };

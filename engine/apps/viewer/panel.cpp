@@ -115,6 +115,7 @@ void Panel::build(demo::DemoApp& app, const demo::FrameReport& frame, Window& wi
     bool lod_changed = ImGui::SliderFloat("start (m)", &p.lod.start_distance, 0.0f, 10.0f);
     lod_changed |= ImGui::SliderFloat("end (m)", &p.lod.end_distance, 0.0f, 20.0f);
     lod_changed |= ImGui::SliderFloat("min fraction", &p.lod.min_fraction, 0.01f, 1.0f);
+    lod_changed |= ImGui::SliderFloat("target width (px, 0 = by distance)", &p.lod.target_width_px, 0.0f, 4.0f);
     if (lod_changed) p.has_lod = true;
   }
   if (ImGui::CollapsingHeader("GPU time", ImGuiTreeNodeFlags_DefaultOpen)) {

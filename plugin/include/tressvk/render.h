@@ -113,13 +113,20 @@ typedef struct TvkView {
   uint32_t width, height;             /* viewport in pixels (quad widths and coverage are computed in pixels) */
 } TvkView;
 
-/* Level of detail: beyond start_distance (eye to the instance's origin), fewer strands are drawn, down to
- * min_fraction of them at end_distance, each wider by 1/fraction so that the hair keeps its coverage. The strands
- * drawn are a prefix of the baked LOD order (an even thinning). Zero-initialised = LOD off. */
+/* Level of detail: fewer strands are drawn, each wider by 1/fraction so that the hair keeps its coverage. The strands
+ * drawn are a prefix of the baked LOD order (an even thinning). Two modes:
+ * - by distance (target_width_px = 0): beyond start_distance (eye to the instance's origin), down to min_fraction
+ *   of the strands at end_distance;
+ * - by coverage (target_width_px > 0): the fraction is the strands' projected root width in pixels at the
+ *   instance's origin (the widest material's strand_width, in the camera's view) over target_width_px, clamped to
+ *   [min_fraction, 1]: sub-pixel strands are thinned until the drawn ones are about target_width_px wide, wider
+ *   strands are all drawn (start_distance and end_distance are not used; min_fraction 0 = no floor).
+ * Zero-initialised = LOD off. docs/rendering.md "Level of detail" gives the error of each against all strands. */
 typedef struct TvkLodSettings {
   float start_distance;               /* m */
   float end_distance;                 /* m, > start_distance */
   float min_fraction;                 /* 0..1 */
+  float target_width_px;              /* > 0: coverage-driven LOD (see above); 0: by distance */
 } TvkLodSettings;
 
 typedef struct TvkDrawInfo {
@@ -223,10 +230,12 @@ TVK_API TvkResult tressvk_cmd_composite_hair(TvkRenderer renderer, VkCommandBuff
  * camera, as for tressvk_cmd_draw_shadow; strands are at least 1.5 texels wide, as there.
  * Synchronization contract: the map (D32_SFLOAT, single sample, created with TRANSFER_SRC and TRANSFER_DST usage)
  * comes in VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: the host makes its depth writes visible to ALL_TRANSFER /
- * TRANSFER_READ with that transition first. The call copies the map into a renderer-owned buffer, transitions the
- * image to TRANSFER_DST_OPTIMAL (an image barrier of its own), keeps the nearer of the map and the hair per texel
- * in compute, and copies the result back: the map is left in TRANSFER_DST_OPTIMAL, and the host orders the call's
- * ALL_TRANSFER / TRANSFER_WRITE before its own reads with its transition to its read layout. Its first barrier
+ * TRANSFER_READ with that transition first. The call copies the rectangle of the map the hair can reach this frame
+ * (computed on the CPU, conservative; the whole map for a skinned instance; docs/rendering.md) into a renderer-owned
+ * buffer, transitions the image to TRANSFER_DST_OPTIMAL (an image barrier of its own), keeps the nearer of the map
+ * and the hair per texel in compute, and copies the rectangle back (texels outside it are not written; with no
+ * rectangle, only the transition is recorded): the map is left in TRANSFER_DST_OPTIMAL, and the host orders the
+ * call's ALL_TRANSFER / TRANSFER_WRITE before its own reads with its transition to its read layout. Its first barrier
  * orders it after the previous frame's copies of this renderer. State disturbed: the bound compute
  * pipeline, compute descriptor set 0, push constants. */
 typedef struct TvkShadowRasterInfo {
@@ -252,6 +261,9 @@ typedef struct TvkRasterStats {
   uint32_t entry_capacity;
   uint32_t slice_capacity;            /* segments sorted at once per tile */
   uint64_t split_tiles;               /* over-full tiles composited in depth shares by several workgroups */
+  uint64_t shadow_samples_outside;    /* tressvk_cmd_shadow_hair (its last call that copied a rectangle): hair samples
+                                         inside the map but outside the rectangle it copied, i.e. not written. The
+                                         rectangle is conservative, so this is 0; tests check it */
 } TvkRasterStats;
 TVK_API TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out_stats);
 

@@ -23,6 +23,9 @@ struct TvkAsset_T {
   tressvk::asset::HairAsset cpu;        // kept for group names, bone count and the reference
   tressvk::model::ModelRest rest;   // the model's rest data (double), from which the GPU data is made
   float median_strand_length = 0.0f;
+  // The renderer's bound of the groom around the asset origin (render/bounds.cpp, made on first use): the farthest a
+  // guide vertex can be (root distance + 1.1 x its rest length) and the longest follow offset, in metres.
+  double render_guide_reach = -1.0, render_follow_offset = 0.0;
   // Static buffers, bindings 4..11 of shaders/sim/layout.glsl.
   std::array<tressvk::GpuBuffer, 8> statics{};
   uint32_t users = 1;                   // the host's handle plus one per live instance

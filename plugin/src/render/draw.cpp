@@ -49,6 +49,20 @@ double lod_fraction(const TvkLodSettings& lod, double distance) {
   return 1.0 + t * (double{lod.min_fraction} - 1.0);
 }
 
+// Coverage-driven LOD: the fraction that makes the drawn strands about target_width_px wide where the instance's
+// origin projects (the same pixels-per-metre as vertex.comp's width: the view-projection's x scale over clip w),
+// clamped to [min_fraction, 1]. All strands when the origin is behind the eye (no scale to speak of).
+double lod_coverage_fraction(const TvkLodSettings& lod, const TvkView& view, const std::array<double, 3>& origin,
+                             float root_width) {
+  const double* m = view.view_projection;
+  const double w = m[3] * origin[0] + m[7] * origin[1] + m[11] * origin[2] + m[15];
+  if (!(w > 1e-9) || !(root_width > 0.0f)) return 1.0;
+  const double px_per_metre = std::sqrt(m[0] * m[0] + m[4] * m[4] + m[8] * m[8]) * 0.5 * view.width / w;
+  const double width_px = double{root_width} * px_per_metre;
+  const double floor = std::clamp(double{lod.min_fraction}, 0.0, 1.0);
+  return std::clamp(width_px / double{lod.target_width_px}, floor, 1.0);
+}
+
 }  // namespace
 
 TvkResult begin_call(TvkRenderer_T& r, const char* fn) {
@@ -94,8 +108,21 @@ TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_
   const uint32_t guides = asset.cpu.guide_count();
   const uint32_t total = asset.cpu.total_strands();
   const TvkView& lod_view = (shadow_pass && info->lod_view) ? *info->lod_view : view;
-  const double dx = lod_view.eye[0] - origin[0], dy = lod_view.eye[1] - origin[1], dz = lod_view.eye[2] - origin[2];
-  const double fraction = lod_fraction(info->lod, std::sqrt(dx * dx + dy * dy + dz * dz));
+  double fraction = 1.0;
+  if (info->lod.target_width_px > 0.0f) {
+    float widest = 0.0f;
+    const TvkHairMaterial default_material = TVK_HAIR_MATERIAL_DEFAULT_INIT;
+    const uint32_t used =
+        std::max<uint32_t>({1u, static_cast<uint32_t>(asset.cpu.groups.size()), info->material_count});
+    for (uint32_t g = 0; g < std::min<uint32_t>(used, TVK_MAX_MATERIALS); ++g)
+      widest = std::max(widest, (!info->materials || info->material_count == 0)
+                                    ? default_material.strand_width
+                                    : info->materials[std::min(g, info->material_count - 1)].strand_width);
+    fraction = lod_coverage_fraction(info->lod, lod_view, origin, widest);
+  } else {
+    const double dx = lod_view.eye[0] - origin[0], dy = lod_view.eye[1] - origin[1], dz = lod_view.eye[2] - origin[2];
+    fraction = lod_fraction(info->lod, std::sqrt(dx * dx + dy * dy + dz * dz));
+  }
   drawn = std::clamp(static_cast<uint32_t>(std::ceil(fraction * total)), 1u, total);
   dc.counts[0] = n;
   dc.counts[1] = guides;
@@ -141,6 +168,39 @@ TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_
     dc.shadow_params[2] = info->shadow->perspective ? 1.0f : 0.0f;
   }
   return TVK_SUCCESS;
+}
+
+double hair_bound_radius(const TvkInstance_T& inst) {
+  // Skinned: the roots follow the bones of the simulation's last step, which lies between the previous frame's bones
+  // and this frame's; the renderer knows only this frame's, so it claims no bound.
+  if (inst.frame.bones) return -1.0;
+  TvkAsset_T& asset = *inst.asset;
+  const asset::HairAsset& a = asset.cpu;
+  if (asset.render_guide_reach < 0.0) {
+    // A guide vertex lies within its chain's length of its root; 1.25 x the rest length leaves room for a stretch
+    // far beyond what the length passes let through.
+    double reach = 0.0, offset = 0.0;
+    const uint32_t n = a.vertices_per_strand;
+    for (uint32_t g = 0; g < a.guide_count(); ++g) {
+      const auto& root = a.rest_positions[size_t{g} * n];
+      double length = 0.0;
+      for (uint32_t v = 0; v + 1 < n; ++v) length += a.rest_lengths[size_t{g} * n + v];
+      const double r = std::sqrt(double{root[0]} * root[0] + double{root[1]} * root[1] + double{root[2]} * root[2]);
+      reach = std::max(reach, r + 1.25 * length);
+    }
+    for (const auto& f : a.follow_offsets)
+      offset = std::max(offset, std::sqrt(double{f[0]} * f[0] + double{f[1]} * f[1] + double{f[2]} * f[2]));
+    asset.render_follow_offset = offset;
+    asset.render_guide_reach = reach;
+  }
+  // Follows: their guide's vertex plus the root offset spread by (1 + tip_separation * t).
+  double separation = std::max(0.0, asset.rest.asset_tip_separation);
+  for (const TvkSimParams& p : inst.params)
+    if (p.tip_separation >= 0.0f) separation = std::max(separation, double{p.tip_separation});
+  // Rigid: a root x (relative to the asset origin a) is at R (a + x) + T at the last step, and the simulation origin
+  // O is T + R a rounded to 1/1024 m per axis (model/planner.cpp), so |root - O| <= |x| + sqrt(3) / 2048 m whatever
+  // the rotation. 1 mm covers that rounding and float rounding.
+  return asset.render_guide_reach + (1.0 + separation) * asset.render_follow_offset + 1e-3;
 }
 
 VkDeviceSize store_constants(TvkRenderer_T& r, const DrawConstants& dc) {

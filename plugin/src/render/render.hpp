@@ -74,6 +74,9 @@ TvkResult begin_call(TvkRenderer_T& r, const char* fn);
 // shadowed flag kept only when `shadowed`), shadow projection.
 TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_pass, bool shadowed, const char* fn,
                          DrawConstants& dc, uint32_t& drawn);
+// The radius of a sphere around the instance's simulation origin that holds every strand vertex of its last simulated
+// step, in metres (draw.cpp says why it holds); < 0 when no bound is known (a skinned instance).
+double hair_bound_radius(const TvkInstance_T& inst);
 // Copies the constants into this frame's ring slice; returns their offset in r.ring.
 VkDeviceSize store_constants(TvkRenderer_T& r, const DrawConstants& dc);
 // One descriptor set of `layout` from `pool` (one of this frame slot's pools, reset when the slot comes round); `call`

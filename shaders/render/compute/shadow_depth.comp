@@ -3,14 +3,15 @@
 // tressvk_cmd_shadow_hair: hair depth into the host's shadow map, in compute. One thread per segment walks it in
 // shadow-map texels (a sample per texel or less) and, at each sample, across its width (at least 1.5 texels, as
 // the raster shadow pass draws it, so thin hair still lands in the map), keeps the nearest depth per texel
-// (atomicMin on the float bits of depths in [0, 1], which order like the values) in a copy of the host's map.
+// (atomicMin on the float bits of depths in [0, 1], which order like the values) in a copy of the rectangle of the
+// host's map the hair can reach (shadow.cpp, hair_rect; texels outside it are left alone).
 layout(local_size_x = 64) in;
 #include "render/hair_layout.glsl"
 
 layout(std430, set = 0, binding = 5) buffer Depth { uint depth[]; };
 layout(push_constant) uniform Shadow {
-  uvec4 size;    // x: width, y: height
-  uvec4 params;  // y: strands drawn, w: segments
+  uvec4 size;    // x: width, y: height of the map; z, w: the rectangle's first texel
+  uvec4 params;  // x: the rectangle's width, y: strands drawn, z: the rectangle's height, w: segments
 } pc;
 
 vec4 to_map(uint strand, uint v, out float width_texels) {
@@ -49,8 +50,14 @@ void main() {
     const uint taps = uint(ceil(half_width));
     for (int o = -int(taps); o <= int(taps); ++o) {
       const vec2 y = x + across * (half_width * float(o) / float(taps));
-      if (any(lessThan(y, vec2(0.0))) || any(greaterThanEqual(y, vec2(pc.size.xy)))) continue;
-      const uint texel = uint(y.y) * pc.size.x + uint(y.x);
+      const vec2 q = y - vec2(pc.size.zw);  // in the rectangle's texels
+      if (any(lessThan(q, vec2(0.0))) || any(greaterThanEqual(q, vec2(pc.params.xz)))) {
+        // Inside the map but outside the rectangle: never, the rectangle being conservative; counted.
+        if (all(greaterThanEqual(y, vec2(0.0))) && all(lessThan(y, vec2(pc.size.xy))))
+          atomicAdd(depth[pc.size.x * pc.size.y], 1u);
+        continue;
+      }
+      const uint texel = uint(q.y) * pc.params.x + uint(q.x);
       // Read first: most samples of dense hair are behind what the texel holds, and skip the atomic.
       if (depth[texel] > floatBitsToUint(z)) atomicMin(depth[texel], floatBitsToUint(z));
     }

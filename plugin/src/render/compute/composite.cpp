@@ -71,6 +71,7 @@ TvkResult tressvk_get_raster_stats(TvkRenderer renderer, TvkRasterStats* out) {
   out->hair_pixels = c[5];
   out->sliced_tiles = c[6];
   out->split_tiles = c[7];
+  out->shadow_samples_outside = c[kCounterCount];  // the shadow call's counter (raster.cpp copies it)
   out->memory_bytes = memory_bytes(*s);
   out->entry_capacity = s->entry_capacity;
   out->slice_capacity = kSliceCapacity;

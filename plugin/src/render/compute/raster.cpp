@@ -176,6 +176,12 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
                      VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy counters{0, 0, 4 * kCounterCount};
   ctx.vk.vkCmdCopyBuffer(cmd, s.counters.buffer, s.stats_readback.buffer, 1, &counters);
+  // The last shadow call's count of samples outside its rectangle (its compute -> transfer barrier made it
+  // available; this call's first barrier orders the copy after it), read with the other counters.
+  if (s.shadow_counter_offset) {
+    const VkBufferCopy outside{s.shadow_counter_offset, 4 * kCounterCount, 4};
+    ctx.vk.vkCmdCopyBuffer(cmd, s.shadow_depth.buffer, s.stats_readback.buffer, 1, &outside);
+  }
   if (capture) {
     const uint64_t pixels = uint64_t{width} * height;
     const VkBufferCopy verts{0, 0, 32 * uint64_t{drawn} * n};

@@ -257,7 +257,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
     res = grow(ctx, s.dom, 4ull * kDomSize * kDomSize * (1 + kDomLayers), storage, Memory::device,
                "hair deep opacity map");
   if (res == TVK_SUCCESS)
-    res = grow(ctx, s.stats_readback, 4 * kCounterCount, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host_readback,
+    res = grow(ctx, s.stats_readback, 4 * kCounterCount + 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host_readback,
                "hair compute statistics");
   // The capture depth binding always needs a buffer; a pixel-sized one only when capturing.
   if (res == TVK_SUCCESS)

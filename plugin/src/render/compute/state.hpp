@@ -64,7 +64,8 @@ struct State {
   VkDescriptorSetLayout shadow_set_layout = VK_NULL_HANDLE;
   VkPipelineLayout shadow_layout = VK_NULL_HANDLE;
   VkPipeline shadow = VK_NULL_HANDLE;
-  GpuBuffer shadow_depth;
+  GpuBuffer shadow_depth;  // the copied rectangle, then (after the whole map's texels) the outside-samples counter
+  VkDeviceSize shadow_counter_offset = 0;  // where that counter is (0: no shadow call yet)
 
   GpuBuffer verts, tiles, entries, counters, image, capture_depth, dom;
   GpuBuffer split_items, partials;  // over-full tiles' work items (and the split pass's dispatch), partial layers
