@@ -47,6 +47,7 @@ uint tvk_skin_base;
 const float kCalibrationSegments = 31.0;
 const uint kCompliantExtraNewton = 4u;
 const float kCompliantStretchTol = 1e-3;
+const float kCompliantReachFloorRel = 0.5;
 
 // ---- lane operations (every lane of the workgroup calls them: they hold barriers) ---------------------------------
 
@@ -193,7 +194,7 @@ void local_shape_lanes(uint g, uint b, uint v) {
 // One Newton step of every segment's length constraint (the reference's solve_lengths on the compliant model):
 // lane v holds segment v (v < N - 1) and vertex v. move and lam accumulate the step's move (vertex) and multiplier
 // (segment) for the transverse solve.
-void newton_lanes(uint b, uint v, inout vec3 move, inout float lam) {
+void newton_lanes(uint b, uint v, float reach_floor, inout vec3 move, inout float lam) {
   bool seg = v + 1u < N;
   vec3 gv = vec3(0.0);
   float rest = seg ? rest_info[b + v * TVK_BLOCK].x : 0.0;
@@ -218,7 +219,9 @@ void newton_lanes(uint b, uint v, inout vec3 move, inout float lam) {
   if (v < N && s_pos[v].w > 0.0) {
     if (seg) dx += l * gv;
     if (v > 0u) dx -= s_red[v - 1u] * s_x[v - 1u].xyz;
-    float reach = 0.5 * min(v > 0u ? rest_info[b + (v - 1u) * TVK_BLOCK].x : 3.0e38, seg ? rest : 3.0e38);
+    // Against segments of at least kCompliantReachFloorRel of the mean segment (see the reference's solve_lengths).
+    float reach = 0.5 * min(v > 0u ? max(rest_info[b + (v - 1u) * TVK_BLOCK].x, reach_floor) : 3.0e38,
+                            seg ? max(rest, reach_floor) : 3.0e38);
     float len = length(dx);
     if (len > reach) ratio = reach / len;
   }
@@ -333,9 +336,10 @@ void length_lanes(uint g, uint b, uint v, bool write_tangents) {
 
   vec3 move = vec3(0.0);
   float lam = 0.0;
-  newton_lanes(b, v, move, lam);
+  float reach_floor = kCompliantReachFloorRel * strand_rest_length(g) / float(N - 1u);
+  newton_lanes(b, v, reach_floor, move, lam);
   transverse_lanes(b, v, move, lam);
-  for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(b, v, move, lam);
+  for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(b, v, reach_floor, move, lam);
   for (uint extra = 0u; extra < kCompliantExtraNewton; ++extra) {
     float off = 0.0;
     if (v + 1u < N && (s_pos[v].w > 0.0 || s_pos[v + 1u].w > 0.0)) {
@@ -343,7 +347,7 @@ void length_lanes(uint g, uint b, uint v, bool write_tangents) {
       off = abs(length(s_pos[v + 1u].xyz - s_pos[v].xyz) - rest) / rest;
     }
     if (!(lanes_max(v, off) > kCompliantStretchTol)) break;
-    newton_lanes(b, v, move, lam);
+    newton_lanes(b, v, reach_floor, move, lam);
   }
 
   bool ok = true;

@@ -185,6 +185,9 @@ namespace {
 // The compliant length solve's safeguard (see length_and_collision).
 constexpr uint32_t kCompliantExtraNewton = 4;
 constexpr double kCompliantStretchTol = 1e-3;
+// The damped Newton step's reach is measured against segments of at least this fraction of the strand's mean segment
+// (see solve_lengths).
+constexpr double kCompliantReachFloorRel = 0.5;
 constexpr double kCalibrationSegments = 31.0;
 
 // Local shape: the dimensionless XPBD compliance alpha / h^2 of one edge's vector constraint C_v = x_{v+1} - x_v -
@@ -458,13 +461,20 @@ void Simulator::solve_lengths(size_t b) {
     if (v > 0) dx -= seg_dp_[v - 1] * m_prev;
     return dx;
   };
+  // SimModel::kCompliant measures the reach against segments of at least half the strand's mean segment: a
+  // sub-micrometre segment (hard case 8) would otherwise hold every Newton step of its strand to a fraction of a
+  // micrometre, and the strand's other segments stayed stretched by up to 75 %; its direction stays defined as it
+  // vanishes (constraint_direction).
+  const double reach_floor = length_model_ == LengthModel::kCompliant
+                                 ? kCompliantReachFloorRel * rest_.strand_length[b / n] / static_cast<double>(m)
+                                 : 0.0;
   double scale = 1.0;
   Vec3 m_prev{};
   for (uint32_t v = 0; v < n; ++v) {
     const Vec3 m_v = v < m ? mid_dir(v, grad(v)) : Vec3{};
     if (w(v) > 0.0) {
-      const double reach = 0.5 * std::min(v > 0 ? rest_.rest_length[b + v - 1] : INFINITY,
-                                          v < m ? rest_.rest_length[b + v] : INFINITY);
+      const double reach = 0.5 * std::min(v > 0 ? std::max(rest_.rest_length[b + v - 1], reach_floor) : INFINITY,
+                                          v < m ? std::max(rest_.rest_length[b + v], reach_floor) : INFINITY);
       const double len = length(move_of(v, m_v, m_prev));
       if (len * scale > reach) scale = reach / len;
     }

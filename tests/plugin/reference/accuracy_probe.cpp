@@ -1,7 +1,7 @@
 // Prints the model-accuracy numbers docs/accuracy.md quotes, from the double reference: the hanging chain's period and
 // decay per period (N x step rate x length sweeps), the cantilever's tip sag (N x step rate x local iterations) and
 // the convergence of a shaken strand's trajectory as the step rate doubles. A diagnostic, not a test.
-//   tressvk_accuracy_probe [chain|cantilever|convergence|rest|looks|perturb|upright]...
+//   tressvk_accuracy_probe [chain|cantilever|convergence|rest|looks|perturb|upright|stretch]...
 // perturb / upright: the growth of a small perturbation of the initial state (rounding amplification; docs/accuracy.md).
 // Environment: TVK_LENGTH_MODEL=newmark (the reference's Newmark length model); for `rest`, TVK_LOCAL / TVK_GLOBAL
 // (stiffness) and TVK_LIT (local iterations) override the defaults.
@@ -285,6 +285,54 @@ void upright() {
   }
 }
 
+// The compliant length solve's worst stretch per 6 frames (reference::stretch) on TVK_GROOM x TVK_GUIDES x TVK_N in
+// TVK_SCENE (defaults: long128 8 x 128, run: hard case 2); TVK_NEAR_DUP=1 instead puts sub-micrometre segments into
+// the straight groom as hard case 8 does (tressvk-bench hardcases, hard_cases.cpp near_duplicates()).
+void stretch_probe() {
+  const char* groom_name = std::getenv("TVK_GROOM") ? std::getenv("TVK_GROOM") : "long128";
+  const char* scene = std::getenv("TVK_SCENE") ? std::getenv("TVK_SCENE") : "run";
+  const uint32_t n = std::getenv("TVK_N") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_N"))) : 128u;
+  const uint32_t guides = std::getenv("TVK_GUIDES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_GUIDES"))) : 8u;
+  auto a = tvk_test::groom(groom_name, guides, 0, n);
+  if (std::getenv("TVK_NEAR_DUP")) {
+    a = tvk_test::groom("straight", 8);
+    const uint32_t m = a.vertices_per_strand;
+    const auto pos = [&](size_t i) { const auto& p = a.rest_positions[i]; return Vec3{p[0], p[1], p[2]}; };
+    const auto place = [&](size_t g, uint32_t v, uint32_t after, double distance) {
+      const size_t b = g * m;
+      const Vec3 dir = normalize(pos(b + m - 1) - pos(b));
+      const Vec3 p = pos(b + after) + distance * dir;
+      for (int k = 0; k < 3; ++k) a.rest_positions[b + v][k] = static_cast<float>(k == 0 ? p.x : k == 1 ? p.y : p.z);
+    };
+    place(0, 5, 4, 2e-7);
+    place(1, m - 1, m - 2, 2e-7);
+    place(2, 8, 7, 1e-7);
+    place(2, 9, 7, 2e-7);
+    place(2, 10, 7, 4e-7);
+    for (size_t g = 0; g < 3; ++g)
+      for (uint32_t v = 0; v + 1 < m; ++v) {
+        const size_t i = g * m + v;
+        const Vec3 d = pos(i + 1) - pos(i);
+        a.rest_lengths[i] = static_cast<float>(length(d));
+        const auto& q = a.rest_frames[i];
+        const Vec3 e = tressvk::model::quat_rotate(tressvk::model::conjugate(tressvk::model::Quat{q[0], q[1], q[2], q[3]}), d);
+        a.rest_edge_local[i] = {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z), 0.0f};
+      }
+  }
+  tressvk::reference::Simulator sim = tvk_test::make_sim(a);
+  sim.set_model(g_model);
+  const auto geo = tressvk::reference::scene_geometry(sim.rest());
+  std::printf("frame,max_stretch\n");
+  double worst = 0;
+  for (uint32_t f = 0; f < 60; ++f) {
+    sim.advance(tressvk::reference::scene_frame(scene, f, geo));
+    const double st = tressvk::reference::stretch(sim.positions().first(sim.rest().rest_pos.size()), sim.rest()).max;
+    worst = std::max(worst, st);
+    if (f % 6 == 5) std::printf("%u,%.3e\n", f, st);
+  }
+  std::printf("worst,%.3e\n", worst);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -300,6 +348,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(what, "looks") == 0) looks();
     if (std::strcmp(what, "perturb") == 0) perturb();
     if (std::strcmp(what, "upright") == 0) upright();
+    if (std::strcmp(what, "stretch") == 0) stretch_probe();
     if (std::strcmp(what, "trace") == 0) {
       cantilever_trace(static_cast<uint32_t>(std::atoi(argv[i + 1])), std::atof(argv[i + 2]),
                        static_cast<uint32_t>(std::atoi(argv[i + 3])));
