@@ -475,8 +475,9 @@ constexpr double kBendCalibration = 5.4;
 // drags: 0.1 s (needed while the targets came from a frame transported along the whole strand, whose flutter it
 // held) made strands under compression (standing up from the crown) creep at 5 cm/s without ever settling and
 // amplified rounding by 1e5 in a second; 5 ms holds 1 and 2 iterations, the curly rest pose and 128-vertex strands at
-// rounding level, lets upright strands settle and leaves the static sag unchanged (docs/accuracy.md, "Rounding
-// amplification").
+// rounding level, lets upright strands settle and leaves the static sag unchanged, but is too little for tight curls
+// under shake (hard case 3 needs >= 10 ms, the 1/100 and 100x checks <= 10 ms): no single value serves both
+// (docs/accuracy.md, "Rounding amplification").
 constexpr double kBendDampingTime = 0.005;
 }  // namespace
 
