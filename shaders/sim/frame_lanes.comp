@@ -1,8 +1,8 @@
 // The lane-parallel frame kernel of the compliant model (the reference's SimModel::kCompliant, docs/accuracy.md):
 // one dispatch per frame runs every substep; one workgroup per guide, one lane per vertex (WORKGROUP_SIZE = the
 // power of two >= N, so N up to 128), the strand's state in shared memory and a barrier between the steps, so it is
-// correct for any subgroup size. Every per-substep solve is parallel over the lanes: the frames are one quaternion
-// scan, the local-shape and length systems are tridiagonal and solved by parallel cyclic reduction (log2 lanes
+// correct for any subgroup size. Every per-substep solve is parallel over the lanes: the shape targets are local (one
+// minimal rotation per edge), the local-shape and length systems are tridiagonal and solved by parallel cyclic reduction (log2 lanes
 // steps), the damped Newton scale, the stretch test and the non-finite test are reductions. Integration and VSP are
 // the per-vertex functions every path calls (integrate.glsl, vsp.glsl); the rest follows the reference's order
 // (plugin/reference/src/simulator.cpp, local_shape_compliant and the kCompliant branch of length_and_collision).
@@ -47,6 +47,7 @@ uint tvk_skin_base;
 const float kCalibrationSegments = 31.0;
 const uint kCompliantExtraNewton = 4u;
 const float kCompliantStretchTol = 1e-3;
+const float kCompliantReachFloorRel = 0.5;
 
 // ---- lane operations (every lane of the workgroup calls them: they hold barriers) ---------------------------------
 
@@ -126,17 +127,23 @@ vec4 lanes_quat_scan(uint r, vec4 q) {
 
 float lane_weight(uint v) { return s_pos[v].w > 0.0 ? 1.0 : 0.0; }
 
+// Rest edge k (vertex k to k + 1) of the strand at b in the asset's frame: rest_pos holds the root, then offsets from it.
+vec3 lanes_rest_edge(uint b, uint k) {
+  vec3 from = k == 0u ? vec3(0.0) : rest_pos[b + k * TVK_BLOCK].xyz;
+  return rest_pos[b + (k + 1u) * TVK_BLOCK].xyz - from;
+}
+
 void local_shape_lanes(uint g, uint b, uint v) {
   GroupParams gp = guide_params(g);
-  vec4 root = quat_mul(skin_rotation(g), root_frame[g]);
-  vec3 root_x = quat_rotate(root, vec3(1, 0, 0));
+  vec4 skin = skin_rotation(g);
   bool row = v >= 1u && v + 1u < N;
   float rel = row ? kCalibrationSegments * rest_info[b + v * TVK_BLOCK].x / strand_rest_length(g) : 0.0;
   float at = gp.reserved0 * rel * rel * rel;
   float gm = gp.reserved1;
   vec3 lam = vec3(0.0);
   for (uint it = 0u; it < gp.local_iterations; ++it) {
-    // 1. Edge directions, the minimal rotation onto each, the frames as a prefix product.
+    // 1. Edge directions, then each constraint's target: its skinned rest edge turned by the minimal rotation of the
+    // last edge before it that turns the frame, from that edge's skinned rest direction onto its current one.
     vec3 u = vec3(0.0);
     if (v + 1u < N) {
       u = constraint_direction(s_pos[v + 1u].xyz - s_pos[v].xyz, s_prev[v + 1u].xyz - s_prev[v].xyz,
@@ -144,30 +151,26 @@ void local_shape_lanes(uint g, uint b, uint v) {
     }
     s_x[v] = vec4(u, 0.0);
     barrier();
-    vec4 q = vec4(0, 0, 0, 1);
+    vec3 target = vec3(0.0);
     if (row) {
-      vec3 uk = s_x[v - 1u].xyz;
-      if (rest_info[b + v * TVK_BLOCK].z != 0.0 && dot(uk, uk) > 0.0) {
-        vec3 xb = root_x;  // the direction of the last edge before that turned the frame
-        for (uint j = v - 1u; j-- > 0u;) {
-          vec3 uj = s_x[j].xyz;
-          if (rest_info[b + (j + 1u) * TVK_BLOCK].z != 0.0 && dot(uj, uj) > 0.0) {
-            xb = uj;
-            break;
-          }
+      vec4 q = vec4(0, 0, 0, 1);
+      for (uint j = v; j-- > 0u;) {
+        vec3 uj = s_x[j].xyz;
+        if (rest_info[b + (j + 1u) * TVK_BLOCK].z != 0.0 && dot(uj, uj) > 0.0) {
+          q = quat_from_two_unit(normalize(quat_rotate(skin, lanes_rest_edge(b, j))), uj);
+          break;
         }
-        q = quat_from_two_unit(xb, uk);
       }
+      target = quat_rotate(q, quat_rotate(skin, lanes_rest_edge(b, v)));
     }
     barrier();
-    vec4 f = normalize(quat_mul(lanes_quat_scan(v, q), root));
-    // 2. All constraints at once, the frames held.
+    // 2. All constraints at once, the targets held.
     float ra = 0.0, rb = 1.0, rc = 0.0;
     vec3 rd = vec3(0.0);
     if (row) {
       float wa = lane_weight(v), wb = lane_weight(v + 1u);
       if (wa + wb > 0.0) {
-        vec3 c = s_pos[v + 1u].xyz - s_pos[v].xyz - quat_rotate(f, rest_edge_local[b + v * TVK_BLOCK].xyz);
+        vec3 c = s_pos[v + 1u].xyz - s_pos[v].xyz - target;
         vec3 vel = (s_pos[v + 1u].xyz - s_prev[v + 1u].xyz) - (s_pos[v].xyz - s_prev[v].xyz);
         ra = v > 1u ? -(1.0 + gm) * wa : 0.0;
         rc = v + 2u < N ? -(1.0 + gm) * wb : 0.0;
@@ -191,7 +194,7 @@ void local_shape_lanes(uint g, uint b, uint v) {
 // One Newton step of every segment's length constraint (the reference's solve_lengths on the compliant model):
 // lane v holds segment v (v < N - 1) and vertex v. move and lam accumulate the step's move (vertex) and multiplier
 // (segment) for the transverse solve.
-void newton_lanes(uint b, uint v, inout vec3 move, inout float lam) {
+void newton_lanes(uint b, uint v, float reach_floor, inout vec3 move, inout float lam) {
   bool seg = v + 1u < N;
   vec3 gv = vec3(0.0);
   float rest = seg ? rest_info[b + v * TVK_BLOCK].x : 0.0;
@@ -216,7 +219,9 @@ void newton_lanes(uint b, uint v, inout vec3 move, inout float lam) {
   if (v < N && s_pos[v].w > 0.0) {
     if (seg) dx += l * gv;
     if (v > 0u) dx -= s_red[v - 1u] * s_x[v - 1u].xyz;
-    float reach = 0.5 * min(v > 0u ? rest_info[b + (v - 1u) * TVK_BLOCK].x : 3.0e38, seg ? rest : 3.0e38);
+    // Against segments of at least kCompliantReachFloorRel of the mean segment (see the reference's solve_lengths).
+    float reach = 0.5 * min(v > 0u ? max(rest_info[b + (v - 1u) * TVK_BLOCK].x, reach_floor) : 3.0e38,
+                            seg ? max(rest, reach_floor) : 3.0e38);
     float len = length(dx);
     if (len > reach) ratio = reach / len;
   }
@@ -331,9 +336,10 @@ void length_lanes(uint g, uint b, uint v, bool write_tangents) {
 
   vec3 move = vec3(0.0);
   float lam = 0.0;
-  newton_lanes(b, v, move, lam);
+  float reach_floor = kCompliantReachFloorRel * strand_rest_length(g) / float(N - 1u);
+  newton_lanes(b, v, reach_floor, move, lam);
   transverse_lanes(b, v, move, lam);
-  for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(b, v, move, lam);
+  for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(b, v, reach_floor, move, lam);
   for (uint extra = 0u; extra < kCompliantExtraNewton; ++extra) {
     float off = 0.0;
     if (v + 1u < N && (s_pos[v].w > 0.0 || s_pos[v + 1u].w > 0.0)) {
@@ -341,7 +347,7 @@ void length_lanes(uint g, uint b, uint v, bool write_tangents) {
       off = abs(length(s_pos[v + 1u].xyz - s_pos[v].xyz) - rest) / rest;
     }
     if (!(lanes_max(v, off) > kCompliantStretchTol)) break;
-    newton_lanes(b, v, move, lam);
+    newton_lanes(b, v, reach_floor, move, lam);
   }
 
   bool ok = true;

@@ -469,11 +469,16 @@ constexpr double kCalibrationStep = 1.0 / 240.0;
 // model's at 240 Hz, 2 iterations, 32 vertices: 91.7 mm against 94.0 mm (tressvk_accuracy_probe cantilever).
 constexpr double kBendCalibration = 5.4;
 // The bending constraints' damping time tau (XPBD's Rayleigh term, gamma = tau / h: a time, so it means the same at
-// every step rate): the targets come from frames transported along the current edges, a follower load that flutters
-// (gains energy) at stiff settings without it: the cantilever never settles at 1-2 iterations, the curly rest pose
-// without gravity grows from rounding to 0.3 of its length in 2 s at 0.01 s, a 128-vertex strand at 0.5 s of an
-// alpha-proportional term. 0.1 s holds all of them at rounding level and leaves the static sag unchanged.
-constexpr double kBendDampingTime = 0.1;
+// every step rate). The targets are held during each iteration's solve and refreshed between iterations, an explicit
+// coupling between neighbouring edges that rings at 1-2 iterations without damping (a cantilever at 2 iterations
+// reaches 1 m/s). The damping acts on each edge's change over the step, its rigid turn included, so it also
+// drags: 0.1 s (needed while the targets came from a frame transported along the whole strand, whose flutter it
+// held) made strands under compression (standing up from the crown) creep at 5 cm/s without ever settling and
+// amplified rounding by 1e5 in a second; 5 ms holds 1 and 2 iterations, the curly rest pose and 128-vertex strands at
+// rounding level, lets upright strands settle and leaves the static sag unchanged, but is too little for tight curls
+// under shake (hard case 3 needs >= 10 ms, the 1/100 and 100x checks <= 10 ms): no single value serves both
+// (docs/accuracy.md, "Rounding amplification").
+constexpr double kBendDampingTime = 0.005;
 }  // namespace
 
 bool compliant_model_from_environment() {

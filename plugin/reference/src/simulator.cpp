@@ -25,7 +25,7 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
   tdp_.assign(rest_.vertices_per_strand, Vec3{});
   lam3_.assign(rest_.vertices_per_strand, Vec3{});
   frame_dir_.assign(rest_.vertices_per_strand, Vec3{});
-  frames_.assign(rest_.vertices_per_strand, Quat{0, 0, 0, 1});
+  targets_.assign(rest_.vertices_per_strand, Vec3{});
 }
 
 void Simulator::set_params(std::span<const TvkSimParams> group_params) {
@@ -185,6 +185,9 @@ namespace {
 // The compliant length solve's safeguard (see length_and_collision).
 constexpr uint32_t kCompliantExtraNewton = 4;
 constexpr double kCompliantStretchTol = 1e-3;
+// The damped Newton step's reach is measured against segments of at least this fraction of the strand's mean segment
+// (see solve_lengths).
+constexpr double kCompliantReachFloorRel = 0.5;
 constexpr double kCalibrationSegments = 31.0;
 
 // Local shape: the dimensionless XPBD compliance alpha / h^2 of one edge's vector constraint C_v = x_{v+1} - x_v -
@@ -308,40 +311,40 @@ Vec3 constraint_direction(Vec3 d, Vec3 was, double rest);
 void Simulator::local_shape_compliant(const Substep& st) {
   // SimModel::kCompliant's local shape (see simulator.hpp). Per iteration:
   //  1. every edge's direction u_k from the current positions (blended with its previous-step direction when short
-  //     or folded: constraint_direction), every edge's minimal rotation R_k from the frame's X before it (u of the
-  //     last edge that turned the frame, or the root frame's X) onto u_k (identity where the frame does not turn),
-  //     and the frames F_v = R_{v-1} ... R_0 root as a prefix product (a scan over the lanes on the GPU);
-  //  2. the constraints C_v = x_{v+1} - x_v - F_v e_v (v = 1 .. n-2, e_v the rest edge in the rest frame) solved
-  //     together with the frames held: (D W D^T + at) dlambda = -(C + at lambda), a scalar tridiagonal system with
-  //     three right-hand sides (row v: (w_v + w_{v+1} + at_v) on the diagonal, -w_v and -w_{v+1} beside it; Thomas
-  //     here, parallel cyclic reduction over the lanes on the GPU), then x_v += w_v (dlambda_{v-1} - dlambda_v) and
-  //     lambda += dlambda (at_v: compliant_bend_alpha; w: 1 free, 0 pinned).
-  // The solve is exact, so the iterations only refresh the frames: the static sag does not depend on them.
+  //     or folded: constraint_direction) and every constraint's target: edge v's skinned rest edge turned by the
+  //     minimal rotation that takes the skinned rest direction of the edge before it (the last one that turns the
+  //     frame: frame_turns; none: no turn) onto that edge's current direction, T_v = R(ubar_j -> u_j) ebar_v. A local
+  //     frame: the target depends on one edge before it, not on the whole strand's path (a frame transported along the
+  //     current edges, TressFX's, gives each target a twist that depends on every edge before it, a follower load
+  //     whose missing reactions made curved strands flutter; docs/accuracy.md, "Rounding amplification");
+  //  2. the constraints C_v = x_{v+1} - x_v - T_v (v = 1 .. n-2) solved together with the targets held:
+  //     (D W D^T + at) dlambda = -(C + at lambda), a scalar tridiagonal system with three right-hand sides (row v:
+  //     (w_v + w_{v+1} + at_v) on the diagonal, -w_v and -w_{v+1} beside it; Thomas here, parallel cyclic reduction
+  //     over the lanes on the GPU), then x_v += w_v (dlambda_{v-1} - dlambda_v) and lambda += dlambda
+  //     (at_v: compliant_bend_alpha; w: 1 free, 0 pinned).
+  // The solve is exact, so the iterations only refresh the targets: the static sag does not depend on them.
   const uint32_t n = rest_.vertices_per_strand;
   for (uint32_t g = 0; g < rest_.guide_count; ++g) {
     const GroupStep& gp = group_of(g);
     if (gp.local_iterations == 0 || n < 3) continue;
     const size_t b = size_t{g} * n;
-    const Quat root = quat_mul(skin_rotation(st, g), rest_.root_frame[g]);
-    const Vec3 root_x = quat_rotate(root, Vec3{1, 0, 0});
+    const Quat skin = skin_rotation(st, g);
     auto w = [&](uint32_t v) { return rest_.inv_mass[b + v] > 0.0 ? 1.0 : 0.0; };
+    auto rest_edge = [&](uint32_t k) { return quat_rotate(skin, rest_.rest_pos[b + k + 1] - rest_.rest_pos[b + k]); };
     for (uint32_t v = 0; v < n; ++v) lam3_[v] = Vec3{};
     for (uint32_t it = 0; it < gp.local_iterations; ++it) {
-      // 1. Directions, then the prefix product of the minimal rotations.
+      // 1. Directions (frame_dir_), then every constraint's target (targets_).
       for (uint32_t k = 0; k + 1 < n; ++k) {
         frame_dir_[k] = constraint_direction(pos_[b + k + 1] - pos_[b + k], prev_[b + k + 1] - prev_[b + k],
                                              rest_.rest_length[b + k]);
       }
-      Quat f = root;
-      Vec3 x_before = root_x;
-      frames_[0] = root;
+      Quat turn{0, 0, 0, 1};
       for (uint32_t v = 1; v + 1 < n; ++v) {
         const uint32_t k = v - 1;  // the edge arriving at v
         if (rest_.frame_turns[b + v] && dot(frame_dir_[k], frame_dir_[k]) > 0.0) {
-          f = normalize(quat_mul(quat_from_two_unit(x_before, frame_dir_[k]), f));
-          x_before = frame_dir_[k];
+          turn = quat_from_two_unit(normalize(rest_edge(k)), frame_dir_[k]);
         }
-        frames_[v] = f;
+        targets_[v] = quat_rotate(turn, rest_edge(v));
       }
       // 2. The tridiagonal solve (rows v = 1 .. n-2; c' in seg_cp_, d' in tdp_).
       double cp_before = 0.0;
@@ -353,8 +356,8 @@ void Simulator::local_shape_compliant(const Substep& st) {
           tdp_[v] = Vec3{};
         } else {
           const double at = compliant_bend_alpha(gp.local_stiffness, rest_.rest_length[b + v], rest_.strand_length[g], st.h);
-          const Vec3 c = pos_[b + v + 1] - pos_[b + v] - quat_rotate(frames_[v], rest_.rest_edge_local[b + v]);
-          // The damping term (XPBD): gamma on the constraint's change over the step, (1 + gamma) on D W D^T.
+          const Vec3 c = pos_[b + v + 1] - pos_[b + v] - targets_[v];
+          // The damping term (XPBD): gamma on the edge's change over the step, (1 + gamma) on D W D^T.
           const double gm = compliant_bend_damping(st.h);
           const Vec3 vel = (pos_[b + v + 1] - prev_[b + v + 1]) - (pos_[b + v] - prev_[b + v]);
           const double sub = v > 1 ? -(1.0 + gm) * wa : 0.0;
@@ -458,13 +461,20 @@ void Simulator::solve_lengths(size_t b) {
     if (v > 0) dx -= seg_dp_[v - 1] * m_prev;
     return dx;
   };
+  // SimModel::kCompliant measures the reach against segments of at least half the strand's mean segment: a
+  // sub-micrometre segment (hard case 8) would otherwise hold every Newton step of its strand to a fraction of a
+  // micrometre, and the strand's other segments stayed stretched by up to 75 %; its direction stays defined as it
+  // vanishes (constraint_direction).
+  const double reach_floor = length_model_ == LengthModel::kCompliant
+                                 ? kCompliantReachFloorRel * rest_.strand_length[b / n] / static_cast<double>(m)
+                                 : 0.0;
   double scale = 1.0;
   Vec3 m_prev{};
   for (uint32_t v = 0; v < n; ++v) {
     const Vec3 m_v = v < m ? mid_dir(v, grad(v)) : Vec3{};
     if (w(v) > 0.0) {
-      const double reach = 0.5 * std::min(v > 0 ? rest_.rest_length[b + v - 1] : INFINITY,
-                                          v < m ? rest_.rest_length[b + v] : INFINITY);
+      const double reach = 0.5 * std::min(v > 0 ? std::max(rest_.rest_length[b + v - 1], reach_floor) : INFINITY,
+                                          v < m ? std::max(rest_.rest_length[b + v], reach_floor) : INFINITY);
       const double len = length(move_of(v, m_v, m_prev));
       if (len * scale > reach) scale = reach / len;
     }

@@ -1,7 +1,8 @@
 // Prints the model-accuracy numbers docs/accuracy.md quotes, from the double reference: the hanging chain's period and
 // decay per period (N x step rate x length sweeps), the cantilever's tip sag (N x step rate x local iterations) and
 // the convergence of a shaken strand's trajectory as the step rate doubles. A diagnostic, not a test.
-//   tressvk_accuracy_probe [chain|cantilever|convergence|rest]...
+//   tressvk_accuracy_probe [chain|cantilever|convergence|rest|looks|perturb|upright|stretch]...
+// perturb / upright: the growth of a small perturbation of the initial state (rounding amplification; docs/accuracy.md).
 // Environment: TVK_LENGTH_MODEL=newmark (the reference's Newmark length model); for `rest`, TVK_LOCAL / TVK_GLOBAL
 // (stiffness) and TVK_LIT (local iterations) override the defaults.
 #include <cstdio>
@@ -172,6 +173,166 @@ void looks() {
   }
 }
 
+// Sensitivity to rounding: the same groom and scene twice on the double reference, the second with every free guide
+// vertex's position moved by TVK_EPS (default 1e-7) of the median strand length in a pseudo-random direction after
+// the first frame; the largest distance between the two (/ median length) every 6 frames. A stable model keeps it
+// near TVK_EPS; float rounding on the GPU is such a perturbation every step. TVK_GROOM (straight), TVK_SCENE (shake),
+// TVK_N (32), TVK_GUIDES (16), TVK_FRAMES (60) pick the setup.
+void perturb() {
+  const char* groom_name = std::getenv("TVK_GROOM") ? std::getenv("TVK_GROOM") : "straight";
+  const char* scene = std::getenv("TVK_SCENE") ? std::getenv("TVK_SCENE") : "shake";
+  const uint32_t n = std::getenv("TVK_N") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_N"))) : 32u;
+  const uint32_t guides = std::getenv("TVK_GUIDES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_GUIDES"))) : 16u;
+  const uint32_t frames = std::getenv("TVK_FRAMES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_FRAMES"))) : 60u;
+  const double eps = std::getenv("TVK_EPS") ? std::atof(std::getenv("TVK_EPS")) : 1e-7;
+  const auto a = tvk_test::groom(groom_name, guides, 0, n);
+  TvkSimParams p = tvk_test::default_params();
+  if (const char* e = std::getenv("TVK_LOCAL")) p.local_stiffness = static_cast<float>(std::atof(e));
+  if (const char* e = std::getenv("TVK_GLOBAL")) p.global_stiffness = static_cast<float>(std::atof(e));
+  if (const char* e = std::getenv("TVK_LIT")) p.local_iterations = static_cast<uint32_t>(std::atoi(e));
+  if (const char* e = std::getenv("TVK_DAMP")) p.damping = static_cast<float>(std::atof(e));
+  TvkSimSettings s = tvk_test::default_settings();
+  if (const char* e = std::getenv("TVK_RATE")) s.time.step_rate = static_cast<float>(std::atof(e));
+  tressvk::reference::Simulator sa = tvk_test::make_sim(a, p, s), sb = tvk_test::make_sim(a, p, s);
+  sa.set_model(g_model);
+  sb.set_model(g_model);
+  const auto geo = tressvk::reference::scene_geometry(sa.rest());
+  sa.advance(tressvk::reference::scene_frame(scene, 0, geo));
+  sb.advance(tressvk::reference::scene_frame(scene, 0, geo));
+  const double median = sa.median_strand_length();
+  uint64_t seed = 12345;
+  auto rnd = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0 * 2.0 - 1.0;
+  };
+  auto pos = sb.mutable_positions();
+  for (size_t i = 0; i < sb.rest().rest_pos.size(); ++i) {
+    if (!(sb.rest().inv_mass[i] > 0.0)) continue;
+    pos[i] += eps * median * Vec3{rnd(), rnd(), rnd()};
+  }
+  std::printf("frame,max_rel\n");
+  for (uint32_t f = 1; f <= frames; ++f) {
+    sa.advance(tressvk::reference::scene_frame(scene, f, geo));
+    sb.advance(tressvk::reference::scene_frame(scene, f, geo));
+    if (f % 6 && f != 1) continue;
+    const size_t count = sa.rest().rest_pos.size();
+    std::printf("%u,%.3e\n", f, tvk_test::max_rel(sa.positions().first(count), sb.positions().first(count), median));
+  }
+  if (std::getenv("TVK_PER_STRAND")) {
+    const uint32_t nv = sa.rest().vertices_per_strand;
+    for (uint32_t g = 0; g < sa.rest().guide_count; ++g) {
+      const size_t b = size_t{g} * nv;
+      double worst = 0;
+      for (uint32_t v = 0; v < nv; ++v) worst = std::max(worst, length(sa.positions()[b + v] - sb.positions()[b + v]));
+      const Vec3 d = sa.rest().rest_pos[b + nv - 1] - sa.rest().rest_pos[b];
+      const Vec3 tip = sa.positions()[b + nv - 1] - sa.positions()[b];
+      std::printf("strand %u rest dir y %.3f  now tip dir y %.3f  apart %.3e\n", g, d.y / length(d), tip.y / length(tip),
+                  worst / median);
+    }
+  }
+}
+
+// One straight strand (L 0.15 m, N from TVK_N, 2 root vertices pinned, defaults) standing TVK_ANGLE degrees above
+// the horizontal (default 76: the straight groom's most upright strand) under gravity, head still, twice: the second
+// with its free vertices moved by TVK_EPS (1e-12) of its length after the first frame. Every 15 frames: the tip's
+// height, the fastest vertex (m/s) and the distance between the two runs (/ L).
+void upright() {
+  const uint32_t n = std::getenv("TVK_N") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_N"))) : 32u;
+  const double angle = (std::getenv("TVK_ANGLE") ? std::atof(std::getenv("TVK_ANGLE")) : 76.0) * 3.14159265358979 / 180;
+  const double eps = std::getenv("TVK_EPS") ? std::atof(std::getenv("TVK_EPS")) : 1e-12;
+  const uint32_t frames = std::getenv("TVK_FRAMES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_FRAMES"))) : 300u;
+  const double len = 0.15;
+  std::vector<Vec3> pts;
+  for (uint32_t v = 0; v < n; ++v) pts.push_back({len * v / (n - 1) * std::cos(angle), len * v / (n - 1) * std::sin(angle), 0});
+  TvkSimParams p = TVK_SIM_PARAMS_DEFAULT_INIT;
+  if (const char* e = std::getenv("TVK_LOCAL")) p.local_stiffness = static_cast<float>(std::atof(e));
+  if (const char* e = std::getenv("TVK_GLOBAL")) p.global_stiffness = static_cast<float>(std::atof(e));
+  if (const char* e = std::getenv("TVK_LIT")) p.local_iterations = static_cast<uint32_t>(std::atoi(e));
+  if (const char* e = std::getenv("TVK_DAMP")) p.damping = static_cast<float>(std::atof(e));
+  const double rate = std::getenv("TVK_RATE") ? std::atof(std::getenv("TVK_RATE")) : 240.0;
+  const auto a = strand_asset(pts, 2);
+  ReferenceRun ra(a, p, settings_at(rate), g_model), rb(a, p, settings_at(rate), g_model);
+  ra.frame(still_frame());
+  rb.frame(still_frame());
+  auto pos = rb.sim().mutable_positions();
+  uint64_t seed = 12345;
+  auto rnd = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0 * 2.0 - 1.0;
+  };
+  for (uint32_t v = 2; v < n; ++v) pos[v] += eps * len * Vec3{rnd(), rnd(), rnd()};
+  std::printf("frame,tip_y,max_speed,apart_rel\n");
+  for (uint32_t f = 1; f <= frames; ++f) {
+    ra.frame(still_frame());
+    rb.frame(still_frame());
+    if (f % 15) continue;
+    const auto xa = ra.sim().positions(), xb = rb.sim().positions(), qa = ra.sim().prev_positions();
+    double apart = 0, speed = 0;
+    for (uint32_t v = 0; v < n; ++v) {
+      apart = std::max(apart, length(xa[v] - xb[v]));
+      speed = std::max(speed, length(xa[v] - qa[v]) * rate);
+    }
+    std::printf("%u,%.5f,%.3e,%.3e\n", f, xa[n - 1].y, speed, apart / len);
+  }
+  if (std::getenv("TVK_PROFILE")) {
+    const auto x = ra.sim().positions(), q = ra.sim().prev_positions(), r = ra.sim().prevprev_positions();
+    for (uint32_t v = 0; v < n; ++v) {
+      const Vec3 s1 = x[v] - q[v], s0 = q[v] - r[v];
+      const double la = length(s1), lb = length(s0);
+      std::printf("v %2u  x %.4f y %.4f  speed %.3e  cos(step, previous step) %+.3f\n", v, x[v].x, x[v].y, la * rate,
+                  la > 0 && lb > 0 ? dot(s1, s0) / (la * lb) : 0.0);
+    }
+  }
+}
+
+// The compliant length solve's worst stretch per 6 frames (reference::stretch) on TVK_GROOM x TVK_GUIDES x TVK_N in
+// TVK_SCENE (defaults: long128 8 x 128, run: hard case 2); TVK_NEAR_DUP=1 instead puts sub-micrometre segments into
+// the straight groom as hard case 8 does (tressvk-bench hardcases, hard_cases.cpp near_duplicates()).
+void stretch_probe() {
+  const char* groom_name = std::getenv("TVK_GROOM") ? std::getenv("TVK_GROOM") : "long128";
+  const char* scene = std::getenv("TVK_SCENE") ? std::getenv("TVK_SCENE") : "run";
+  const uint32_t n = std::getenv("TVK_N") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_N"))) : 128u;
+  const uint32_t guides = std::getenv("TVK_GUIDES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_GUIDES"))) : 8u;
+  auto a = tvk_test::groom(groom_name, guides, 0, n);
+  if (std::getenv("TVK_NEAR_DUP")) {
+    a = tvk_test::groom("straight", 8);
+    const uint32_t m = a.vertices_per_strand;
+    const auto pos = [&](size_t i) { const auto& p = a.rest_positions[i]; return Vec3{p[0], p[1], p[2]}; };
+    const auto place = [&](size_t g, uint32_t v, uint32_t after, double distance) {
+      const size_t b = g * m;
+      const Vec3 dir = normalize(pos(b + m - 1) - pos(b));
+      const Vec3 p = pos(b + after) + distance * dir;
+      for (int k = 0; k < 3; ++k) a.rest_positions[b + v][k] = static_cast<float>(k == 0 ? p.x : k == 1 ? p.y : p.z);
+    };
+    place(0, 5, 4, 2e-7);
+    place(1, m - 1, m - 2, 2e-7);
+    place(2, 8, 7, 1e-7);
+    place(2, 9, 7, 2e-7);
+    place(2, 10, 7, 4e-7);
+    for (size_t g = 0; g < 3; ++g)
+      for (uint32_t v = 0; v + 1 < m; ++v) {
+        const size_t i = g * m + v;
+        const Vec3 d = pos(i + 1) - pos(i);
+        a.rest_lengths[i] = static_cast<float>(length(d));
+        const auto& q = a.rest_frames[i];
+        const Vec3 e = tressvk::model::quat_rotate(tressvk::model::conjugate(tressvk::model::Quat{q[0], q[1], q[2], q[3]}), d);
+        a.rest_edge_local[i] = {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z), 0.0f};
+      }
+  }
+  tressvk::reference::Simulator sim = tvk_test::make_sim(a);
+  sim.set_model(g_model);
+  const auto geo = tressvk::reference::scene_geometry(sim.rest());
+  std::printf("frame,max_stretch\n");
+  double worst = 0;
+  for (uint32_t f = 0; f < 60; ++f) {
+    sim.advance(tressvk::reference::scene_frame(scene, f, geo));
+    const double st = tressvk::reference::stretch(sim.positions().first(sim.rest().rest_pos.size()), sim.rest()).max;
+    worst = std::max(worst, st);
+    if (f % 6 == 5) std::printf("%u,%.3e\n", f, st);
+  }
+  std::printf("worst,%.3e\n", worst);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -185,6 +346,9 @@ int main(int argc, char** argv) {
     if (all || std::strcmp(what, "convergence") == 0) convergence();
     if (std::strcmp(what, "rest") == 0) rest();
     if (std::strcmp(what, "looks") == 0) looks();
+    if (std::strcmp(what, "perturb") == 0) perturb();
+    if (std::strcmp(what, "upright") == 0) upright();
+    if (std::strcmp(what, "stretch") == 0) stretch_probe();
     if (std::strcmp(what, "trace") == 0) {
       cantilever_trace(static_cast<uint32_t>(std::atoi(argv[i + 1])), std::atof(argv[i + 2]),
                        static_cast<uint32_t>(std::atoi(argv[i + 3])));

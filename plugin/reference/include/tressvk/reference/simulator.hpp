@@ -46,15 +46,15 @@ class Simulator {
   // shaders/sim/frame_lanes.comp): the lane-parallel model. Every per-substep solve is parallel over the vertices of a
   // strand (a scan or a tridiagonal system: parallel cyclic reduction over the lanes on the GPU) and every stiffness
   // means the same whatever N, step rate and iteration count. Global shape: a spring toward the skinned rest pose
-  // (global_stiffness = its fraction per step at 240 Hz). Local shape: XPBD vector constraints x_{v+1} - x_v = F_v e_v
-  // (F_v the parallel transport of the root frame along the current edges: a prefix product of per-edge minimal
-  // rotations) with a compliance per edge of a^3 / B, all of a strand's constraints solved at once per iteration (a
-  // tridiagonal system, frames held), the multipliers accumulated over the substep, a damping time of 0.1 s on the
-  // constraints (they are follower loads); local_stiffness maps to B so that a cantilever sags as it did at 240 Hz,
-  // 2 iterations, 32 vertices (tressvk::model::compliant_*). Length: the Newmark model's Newton step and implicit
-  // transverse response, then length_iterations more Newton steps (up to 4 more while a segment is off by > 1e-3),
-  // with no serial clean-up. Measured (docs/accuracy.md): cantilever sag within 10 % over N 16-64, 120-480 Hz and 1-8
-  // iterations (60 Hz: +10.1 %), where the follow-the-leader model spreads over 6x.
+  // (global_stiffness = its fraction per step at 240 Hz). Local shape: XPBD vector constraints x_{v+1} - x_v = T_v,
+  // T_v the skinned rest edge turned by the minimal rotation of the edge before it from its skinned rest direction
+  // (a local frame: no transport along the whole strand), with a compliance per edge of a^3 / B, all of a strand's
+  // constraints solved at once per iteration (a tridiagonal system, targets held), the multipliers accumulated over
+  // the substep, a damping time of 5 ms on the constraints; local_stiffness maps to B so that a cantilever sags as it
+  // did at 240 Hz, 2 iterations, 32 vertices (tressvk::model::compliant_*). Length: the Newmark model's Newton step
+  // and implicit transverse response, then length_iterations more Newton steps (up to 4 more while a segment is off by
+  // > 1e-3), with no serial clean-up. Measured (docs/accuracy.md): cantilever sag within 10 % over N 16-128,
+  // 120-480 Hz and 1-8 iterations (60 Hz: +12.7 %), where the follow-the-leader model spreads over 6x.
   enum class LengthModel { kFollowTheLeader, kNewmark, kCompliant };
   using SimModel = LengthModel;
   void set_length_model(LengthModel m) { length_model_ = m; }
@@ -124,7 +124,7 @@ class Simulator {
   std::vector<double> lam_;  // the Newton steps' multipliers summed, per segment
   std::vector<Vec3> move_, tdp_;
   std::vector<Vec3> lam3_, frame_dir_;  // kCompliant: shape multipliers per edge; per-edge directions
-  std::vector<Quat> frames_;            // kCompliant: the frame at each vertex (aligned to the edge arriving there)  // the Newton steps' move per vertex; the transverse solve's d' (then delta)
+  std::vector<Vec3> targets_;           // kCompliant: each shape constraint's target edge
 };
 
 }  // namespace tressvk::reference
