@@ -41,7 +41,8 @@ void main() {
         atomicAdd(tiles[t], 1u);
         ++binned;
       } else {
-        const uint at = atomicAdd(tiles[2u * tiles_count + t], 1u);
+        // The cursor counts within the tile's block of 1024 tiles; the block's offset is scan.comp's [6T + 2b].
+        const uint at = atomicAdd(tiles[2u * tiles_count + t], 1u) + tiles[6u * tiles_count + 2u * (t / 1024u)];
         // Sort key: the segment's depth at its point nearest the tile's centre (not its mid-point: a segment
         // is often longer than a tile, and what matters is its depth where it crosses this tile).
         if (at < pc.params.x) entries[at] = uvec2(floatBitsToUint(max(mix(a.z, b.z, s), 0.0)), seg);

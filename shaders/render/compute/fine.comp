@@ -224,7 +224,7 @@ void main() {
   const uint pixel = p.y * pc.size.x + p.x;
   const bool capture = (pc.params.z & kFlagCapture) != 0u;
 
-  const uint first = tiles[tiles_count + tile];
+  const uint first = tiles[tiles_count + tile] + tiles[6u * tiles_count + 2u * (tile / 1024u)];  // + block offset
   const uint count = first >= pc.params.x ? 0u : min(tiles[tile], pc.params.x - first);
   const uint items = kSplitPass != 0u ? (tiles[tile] + kSplit - 1u) / kSplit : 1u;  // as scan.comp counted them
   if (count == 0u) {  // uniform over the workgroup

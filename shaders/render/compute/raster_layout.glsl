@@ -8,7 +8,8 @@ layout(set = 0, binding = 6) uniform sampler2D host_depth;   // host opaque dept
 // Per drawn vertex v: [2v] = (x px, y px, depth 0..1 or -1 if culled, width px), [2v+1] = (linear rgb, opacity).
 layout(std430, set = 0, binding = 7) buffer Verts { vec4 verts[]; };
 // Per tile t of T: [t] segment count, [T+t] first entry, [2T+t] scatter cursor, [3T+t] farthest host depth bits,
-// [4T+t] first split slot (kNotSplit: composited whole), [5T+t] its work items finished (fine.comp).
+// [4T+t] first split slot (kNotSplit: composited whole), [5T+t] its work items finished (fine.comp); first entry and
+// cursor count within the tile's block of 1024 tiles, whose offset (entries, split slots) is [6T + 2b] (scan.comp).
 layout(std430, set = 0, binding = 8) buffer Tiles { uint tiles[]; };
 // Tile entries: x = sort key (depth bits), y = segment index.
 layout(std430, set = 0, binding = 9) buffer Entries { uvec2 entries[]; };

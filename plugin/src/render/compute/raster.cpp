@@ -152,7 +152,10 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
   compute_to_compute(ctx, cmd);
   next("render.bin_count");
-  bind(Pass::scan);
+  bind(Pass::scan);  // offsets within blocks of 1024 tiles, then the blocks' offsets
+  ctx.vk.vkCmdDispatch(cmd, static_cast<uint32_t>((tile_count + 1023) / 1024), 1, 1);
+  compute_to_compute(ctx, cmd);
+  bind(Pass::scan_top);
   ctx.vk.vkCmdDispatch(cmd, 1, 1, 1);
   // The scan also wrote the split pass's indirect dispatch size.
   memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

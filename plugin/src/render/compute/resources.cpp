@@ -154,6 +154,7 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {0}, p[2]);
   if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, {0}, p[3]);
   if (res == TVK_SUCCESS && !p[4]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {1}, p[4]);
+  if (res == TVK_SUCCESS && !p[11]) res = make_compute(ctx, s.layout, k_spv_scan_comp, {1}, p[11]);
   // fine.comp's specialization constants: shared-memory entries, slice, reorder window, per fragment, split pass,
   // settle fragments (state.hpp).
   if (res == TVK_SUCCESS && !p[5])
@@ -225,7 +226,8 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   const uint64_t pixels = uint64_t{width} * height;
   const uint64_t tiles = uint64_t{(width + kTile - 1) / kTile} * ((height + kTile - 1) / kTile);
   const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(12 * segments, 1u << 20), max_range / 8);
-  if (32 * vertices > max_range || 8 * pixels > max_range || 24 * tiles > max_range)
+  const uint64_t tile_bytes = 24 * tiles + 8 * ((tiles + 1023) / 1024);  // 6 words per tile, 2 per block of 1024
+  if (32 * vertices > max_range || 8 * pixels > max_range || tile_bytes > max_range)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
                     "tressvk_cmd_raster_hair: %llu strand vertices or a %ux%u view exceed the device's storage "
                     "buffer range (%llu bytes)",
@@ -233,7 +235,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
                     static_cast<unsigned long long>(max_range));
   TvkResult res = grow(ctx, s.verts, std::max<uint64_t>((per_fragment ? 64 : 32) * vertices, 64), storage, Memory::device,
                        "hair compute vertices");
-  if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, 24 * tiles, storage, Memory::device, "hair compute tiles");
+  if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, tile_bytes, storage, Memory::device, "hair compute tiles");
   if (res == TVK_SUCCESS && s.entry_capacity < capacity) {
     res = grow(ctx, s.entries, 8 * capacity, storage, Memory::device, "hair compute tile entries");
     if (res == TVK_SUCCESS) s.entry_capacity = static_cast<uint32_t>(capacity);

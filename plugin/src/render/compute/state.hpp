@@ -18,7 +18,7 @@ enum Binding : uint32_t {
 
 enum class Pass : uint32_t {
   vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, fine_per_fragment, fine_split,
-  fine_split_per_fragment, pass_count
+  fine_split_per_fragment, scan_top, pass_count
 };
 
 struct Push {
