@@ -3,6 +3,7 @@
 #include <tressvk/baker/bake.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/model/math.hpp>
+#include <tressvk/reference/near_duplicates.hpp>
 #include <tressvk/reference/scaling.hpp>
 
 #include <cmath>
@@ -12,7 +13,6 @@
 namespace tressvk::bench {
 namespace {
 
-using model::Quat;
 using model::Vec3;
 
 asset::HairAsset builtin(const char* name, uint32_t guides, uint32_t n = 0) {
@@ -53,42 +53,6 @@ asset::HairAsset tight_curls(uint32_t guides) {
   baker::BakeOptions o;
   o.vertices_per_strand = 64;
   return baker::bake(raw, o);
-}
-
-Vec3 rotate_inverse(const std::array<float, 4>& q, Vec3 v) {
-  const Quat c = model::conjugate(Quat{q[0], q[1], q[2], q[3]});
-  return model::quat_mul(model::quat_mul(c, model::make_quat(v, 0.0)), model::conjugate(c)).v();
-}
-
-// Straight strands with near-duplicate vertices: in guide 0 vertex 5 moved to 0.2 um after vertex 4, in guide 1 the
-// tip to 0.2 um after vertex N-2, in guide 2 vertices 8..10 within 0.4 um of vertex 7 (a duplicate cluster). A valid
-// asset has no exactly zero segment (the baker merges repeated vertices and drops zero-length strands, and the asset
-// validator refuses a zero rest length), so these are the shortest segments the model can be given: about 30 float
-// ulps at 0.1 m from the origin.
-asset::HairAsset near_duplicates() {
-  asset::HairAsset a = builtin("straight", 8);
-  const uint32_t n = a.vertices_per_strand;
-  const auto pos = [&](size_t i) { const auto& p = a.rest_positions[i]; return Vec3{p[0], p[1], p[2]}; };
-  const auto place = [&](size_t g, uint32_t v, uint32_t after, double distance) {
-    const size_t b = g * n;
-    const Vec3 dir = model::normalize(pos(b + n - 1) - pos(b));
-    const Vec3 p = pos(b + after) + distance * dir;
-    for (int k = 0; k < 3; ++k) a.rest_positions[b + v][k] = static_cast<float>(k == 0 ? p.x : k == 1 ? p.y : p.z);
-  };
-  place(0, 5, 4, 2e-7);
-  place(1, n - 1, n - 2, 2e-7);
-  place(2, 8, 7, 1e-7);
-  place(2, 9, 7, 2e-7);
-  place(2, 10, 7, 4e-7);
-  for (size_t g = 0; g < 3; ++g)
-    for (uint32_t v = 0; v + 1 < n; ++v) {
-      const size_t i = g * n + v;
-      const Vec3 d = pos(i + 1) - pos(i);
-      a.rest_lengths[i] = static_cast<float>(model::length(d));
-      const Vec3 e = rotate_inverse(a.rest_frames[i], d);
-      a.rest_edge_local[i] = {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z), 0.0f};
-    }
-  return a;
 }
 
 HardCase scaled_case(double s) {
@@ -183,7 +147,7 @@ std::vector<HardCase> hard_cases() {
   out.push_back(basic("zero-length and duplicate vertices",
                       "straight 8 x 32 with segments of 0.1-0.2 um (a vertex next to its parent, a tip on its "
                       "parent, a cluster of 4 vertices within 0.4 um), shake",
-                      near_duplicates(),
+                      reference::with_near_duplicate_vertices(builtin("straight", 8)),
                       scene("shake")));
   {
     HardCase c = basic("perfectly straight strands",

@@ -11,6 +11,7 @@
 
 #include <tressvk/baker/import.hpp>
 #include <tressvk/baker/procedural.hpp>
+#include <tressvk/reference/near_duplicates.hpp>
 
 #include "analytic.hpp"
 #include "helpers.hpp"
@@ -287,38 +288,15 @@ void upright() {
 
 // The compliant length solve's worst stretch per 6 frames (reference::stretch) on TVK_GROOM x TVK_GUIDES x TVK_N in
 // TVK_SCENE (defaults: long128 8 x 128, run: hard case 2); TVK_NEAR_DUP=1 instead puts sub-micrometre segments into
-// the straight groom as hard case 8 does (tressvk-bench hardcases, hard_cases.cpp near_duplicates()).
+// the straight groom as hard case 8 does (reference::with_near_duplicate_vertices).
 void stretch_probe() {
   const char* groom_name = std::getenv("TVK_GROOM") ? std::getenv("TVK_GROOM") : "long128";
   const char* scene = std::getenv("TVK_SCENE") ? std::getenv("TVK_SCENE") : "run";
   const uint32_t n = std::getenv("TVK_N") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_N"))) : 128u;
   const uint32_t guides = std::getenv("TVK_GUIDES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_GUIDES"))) : 8u;
   auto a = tvk_test::groom(groom_name, guides, 0, n);
-  if (std::getenv("TVK_NEAR_DUP")) {
-    a = tvk_test::groom("straight", 8);
-    const uint32_t m = a.vertices_per_strand;
-    const auto pos = [&](size_t i) { const auto& p = a.rest_positions[i]; return Vec3{p[0], p[1], p[2]}; };
-    const auto place = [&](size_t g, uint32_t v, uint32_t after, double distance) {
-      const size_t b = g * m;
-      const Vec3 dir = normalize(pos(b + m - 1) - pos(b));
-      const Vec3 p = pos(b + after) + distance * dir;
-      for (int k = 0; k < 3; ++k) a.rest_positions[b + v][k] = static_cast<float>(k == 0 ? p.x : k == 1 ? p.y : p.z);
-    };
-    place(0, 5, 4, 2e-7);
-    place(1, m - 1, m - 2, 2e-7);
-    place(2, 8, 7, 1e-7);
-    place(2, 9, 7, 2e-7);
-    place(2, 10, 7, 4e-7);
-    for (size_t g = 0; g < 3; ++g)
-      for (uint32_t v = 0; v + 1 < m; ++v) {
-        const size_t i = g * m + v;
-        const Vec3 d = pos(i + 1) - pos(i);
-        a.rest_lengths[i] = static_cast<float>(length(d));
-        const auto& q = a.rest_frames[i];
-        const Vec3 e = tressvk::model::quat_rotate(tressvk::model::conjugate(tressvk::model::Quat{q[0], q[1], q[2], q[3]}), d);
-        a.rest_edge_local[i] = {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z), 0.0f};
-      }
-  }
+  if (std::getenv("TVK_NEAR_DUP"))
+    a = tressvk::reference::with_near_duplicate_vertices(tvk_test::groom("straight", 8));
   tressvk::reference::Simulator sim = tvk_test::make_sim(a);
   sim.set_model(g_model);
   const auto geo = tressvk::reference::scene_geometry(sim.rest());

@@ -1,6 +1,7 @@
 // Analytic references on the double-precision reference (docs/accuracy.md lists each with its tolerance and the
 // measured value). The same setups run on the GPU in tests/plugin/analytic_test.cpp.
 #include <catch2/catch_test_macros.hpp>
+#include <tressvk/reference/near_duplicates.hpp>
 
 #include <cmath>
 
@@ -381,28 +382,7 @@ TEST_CASE("analytic: an upright strand falls over and settles (compliant model)"
 // stayed stretched by up to 75 %; now the reach is measured against segments of at least half the mean segment:
 // worst 4.4e-3. The bar is the hard cases' 5 % (reference::stretch leaves the sub-micrometre segments out).
 TEST_CASE("analytic: the compliant length solve holds strands with sub-micrometre segments", "[reference][analytic]") {
-  auto a = tvk_test::groom("straight", 8);
-  const uint32_t m = a.vertices_per_strand;
-  const auto pos = [&](size_t i) { const auto& p = a.rest_positions[i]; return Vec3{p[0], p[1], p[2]}; };
-  const auto place = [&](size_t g, uint32_t v, uint32_t after, double distance) {
-    const size_t b = g * m;
-    const Vec3 p = pos(b + after) + distance * normalize(pos(b + m - 1) - pos(b));
-    for (int k = 0; k < 3; ++k) a.rest_positions[b + v][k] = static_cast<float>(k == 0 ? p.x : k == 1 ? p.y : p.z);
-  };
-  place(0, 5, 4, 2e-7);
-  place(1, m - 1, m - 2, 2e-7);
-  place(2, 8, 7, 1e-7);
-  place(2, 9, 7, 2e-7);
-  place(2, 10, 7, 4e-7);
-  for (size_t g = 0; g < 3; ++g)
-    for (uint32_t v = 0; v + 1 < m; ++v) {
-      const size_t i = g * m + v;
-      const Vec3 d = pos(i + 1) - pos(i);
-      a.rest_lengths[i] = static_cast<float>(length(d));
-      const auto& q = a.rest_frames[i];
-      const Vec3 e = quat_rotate(conjugate(tressvk::model::Quat{q[0], q[1], q[2], q[3]}), d);
-      a.rest_edge_local[i] = {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z), 0.0f};
-    }
+  const auto a = tressvk::reference::with_near_duplicate_vertices(tvk_test::groom("straight", 8));
   tressvk::reference::Simulator sim = tvk_test::make_sim(a);
   sim.set_model(LengthModel::kCompliant);
   const auto geo = tressvk::reference::scene_geometry(sim.rest());
