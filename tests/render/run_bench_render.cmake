@@ -1,25 +1,35 @@
 # cmake -P script: `tressvk-bench render` on lavapipe with validation + synchronization validation, small view,
-# both paths (and the coverage-driven LOD against all strands, at the end). The compute path's JSON holds the issue's keys and meets the error targets; the raster path's error
-# is measured (its frame against the reference layer over the same frame without hair), and the measure's own
-# check (the compute path's frame through the same comparison) stays near the compute path's layer error.
-foreach(path compute raster)
-  set(json "${OUT_DIR}/${path}.json")
+# both paths (and the coverage-driven LOD against all strands, at the end). The compute path's JSON holds the
+# issue's keys and meets the error targets; the raster path's error is measured (its frame against the reference
+# layer over the same frame without hair), and the measure's own check (the compute path's frame through the same
+# comparison) stays near the compute path's layer error.
+
+# `tressvk-bench render` on the small test view with validation and the ARGS given, its JSON into `j` (caller's
+# scope); fails naming LABEL when the run fails or any of KEYS is missing or null.
+function(run_render json label)
+  cmake_parse_arguments(R "" "" "ARGS;KEYS" ${ARGN})
   file(REMOVE "${json}")
   file(MAKE_DIRECTORY "${OUT_DIR}")
   execute_process(COMMAND "${BENCH}" render --sample sphere --guides 200 --follows 3 --width 160 --height 120
-                          --frames 2 --warmup 1 --path ${path} --validation --json "${json}"
+                          --frames 2 --warmup 1 ${R_ARGS} --validation --json "${json}"
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "tressvk-bench render --path ${path} failed (${rc}):\n${err}")
+    message(FATAL_ERROR "tressvk-bench render ${label} failed (${rc}):\n${err}")
   endif()
-  file(READ "${json}" j)
-  foreach(key device path width height strands_drawn gpu_ms_shadow gpu_ms_shading error_mean error_p99 error_max
-              hair_pixels)
-    string(JSON v ERROR_VARIABLE missing GET "${j}" ${key})
+  file(READ "${json}" doc)
+  foreach(key ${R_KEYS})
+    string(JSON v ERROR_VARIABLE missing GET "${doc}" ${key})
     if(missing OR v STREQUAL "" OR v STREQUAL "null")
-      message(FATAL_ERROR "--path ${path}: key ${key} missing or null in ${json}")
+      message(FATAL_ERROR "${label}: key ${key} missing or null in ${json}")
     endif()
   endforeach()
+  set(j "${doc}" PARENT_SCOPE)
+endfunction()
+
+foreach(path compute raster)
+  run_render("${OUT_DIR}/${path}.json" "--path ${path}" ARGS --path ${path}
+             KEYS device path width height strands_drawn gpu_ms_shadow gpu_ms_shading error_mean error_p99 error_max
+                  hair_pixels)
   string(JSON mean GET "${j}" error_mean)
   string(JSON p99 GET "${j}" error_p99)
   string(JSON pixels GET "${j}" hair_pixels)
@@ -48,21 +58,8 @@ endforeach()
 # targets; the error against all strands is recorded, not bounded here (a tenth-of-a-pixel view of 800 strands
 # thinned to a quarter is a different sample of the hair: measured mean 18/255 on lavapipe); the summed alpha stays
 # within 10 % of the full reference's (measured +5 %: 185 wide strands for 800 thin ones).
-set(json "${OUT_DIR}/lod.json")
-file(REMOVE "${json}")
-execute_process(COMMAND "${BENCH}" render --sample sphere --guides 200 --follows 3 --width 160 --height 120
-                        --frames 2 --warmup 1 --lod-target-px 1 --error-vs-full --validation --json "${json}"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "tressvk-bench render --lod-target-px 1 --error-vs-full failed (${rc}):\n${err}")
-endif()
-file(READ "${json}" j)
-foreach(key error_vs_full_mean error_vs_full_p99 error_vs_full_max full_strands coverage_vs_full)
-  string(JSON v ERROR_VARIABLE missing GET "${j}" ${key})
-  if(missing OR v STREQUAL "" OR v STREQUAL "null")
-    message(FATAL_ERROR "--error-vs-full: key ${key} missing or null in ${json}")
-  endif()
-endforeach()
+run_render("${OUT_DIR}/lod.json" "--lod-target-px 1 --error-vs-full" ARGS --lod-target-px 1 --error-vs-full
+           KEYS error_vs_full_mean error_vs_full_p99 error_vs_full_max full_strands coverage_vs_full)
 string(JSON drawn GET "${j}" strands_drawn)
 string(JSON total GET "${j}" full_strands)
 string(JSON mean GET "${j}" error_mean)

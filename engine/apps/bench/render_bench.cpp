@@ -28,6 +28,19 @@ namespace tressvk::bench {
 
 namespace {
 
+// The last raster call's capture (its vertices, host depth and layer); the plugin's message as an exception if none.
+TvkRasterCapture raster_capture(demo::DemoApp& app) {
+  TvkRasterCapture cap{};
+  if (tressvk_get_raster_capture(app.renderer(), &cap) != TVK_SUCCESS)
+    throw std::runtime_error(tressvk_last_error(app.plugin()));
+  return cap;
+}
+
+// The brute-force reference's input: the captured vertices and host depth.
+reference::StrandRasterInput reference_input(const TvkRasterCapture& c) {
+  return {c.width, c.height, c.vertices_per_strand, c.strands, c.vertices, c.host_depth};
+}
+
 double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
 double srgb_encode(double v) {
   v = std::clamp(v, 0.0, 1.0);
@@ -219,12 +232,9 @@ int run_render_bench(const RenderBenchOptions& o) {
         engine::Pixels frame;
         app.run(1, [&](demo::FrameReport& f) { frame = std::move(f.pixels); });
         if (!o.png.empty()) engine::write_png(o.png, frame);
-        TvkRasterCapture cap{};
-        if (tressvk_get_raster_capture(app.renderer(), &cap) != TVK_SUCCESS)
-          throw std::runtime_error(tressvk_last_error(app.plugin()));
+        const TvkRasterCapture cap = raster_capture(app);
         tressvk_get_raster_stats(app.renderer(), &stats);
-        const reference::StrandRasterInput in{cap.width, cap.height, cap.vertices_per_strand, cap.strands,
-                                              cap.vertices, cap.host_depth};
+        const reference::StrandRasterInput in = reference_input(cap);
         const auto t0 = std::chrono::steady_clock::now();
         uint64_t ref_fragments = 0;
         const reference::HairLayer ref = reference::render_strands_reference(in, &ref_fragments);
@@ -252,12 +262,8 @@ int run_render_bench(const RenderBenchOptions& o) {
           demo::DemoApp full_app(dev, df);
           full_app.set_view(view);
           full_app.run(o.warmup + o.frames + 1, [](demo::FrameReport&) {});
-          TvkRasterCapture full{};
-          if (tressvk_get_raster_capture(full_app.renderer(), &full) != TVK_SUCCESS)
-            throw std::runtime_error(tressvk_last_error(full_app.plugin()));
-          const reference::StrandRasterInput fin{full.width, full.height, full.vertices_per_strand, full.strands,
-                                                 full.vertices, full.host_depth};
-          const reference::HairLayer full_ref = reference::render_strands_reference(fin);
+          const TvkRasterCapture full = raster_capture(full_app);
+          const reference::HairLayer full_ref = reference::render_strands_reference(reference_input(full));
           const reference::LayerError ef = reference::compare_layers(layer, full_ref);
           const reference::LayerError ff =
               reference::compare_layers(reference::layer_from_half(full.width, full.height, full.layer), full_ref);
@@ -301,12 +307,8 @@ int run_render_bench(const RenderBenchOptions& o) {
       capture_app.run(before + 1, [&](demo::FrameReport& f) {
         if (++kc == before + 1) compute_frame = std::move(f.pixels);
       });
-      TvkRasterCapture cap{};
-      if (tressvk_get_raster_capture(capture_app.renderer(), &cap) != TVK_SUCCESS)
-        throw std::runtime_error(tressvk_last_error(capture_app.plugin()));
-      const reference::StrandRasterInput in{cap.width, cap.height, cap.vertices_per_strand, cap.strands,
-                                            cap.vertices, cap.host_depth};
-      const reference::HairLayer ref = reference::render_strands_reference(in);
+      const TvkRasterCapture cap = raster_capture(capture_app);
+      const reference::HairLayer ref = reference::render_strands_reference(reference_input(cap));
       const reference::HairLayer compute = reference::layer_from_half(cap.width, cap.height, cap.layer);
       demo::Options db = d;
       db.draw_hair = false;
