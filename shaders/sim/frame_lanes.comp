@@ -2,8 +2,8 @@
 // one dispatch per frame runs every substep; one workgroup per guide, one lane per vertex (WORKGROUP_SIZE = the
 // power of two >= N, so N up to 128), the strand's state in shared memory and a barrier between the steps, so it is
 // correct for any subgroup size. Every per-substep solve is parallel over the lanes: the shape targets are local (one
-// minimal rotation per edge), the local-shape and length systems are tridiagonal and solved by parallel cyclic reduction (log2 lanes
-// steps), the damped Newton scale, the stretch test and the non-finite test are reductions. Integration and VSP are
+// minimal rotation per edge), the local-shape and length systems are tridiagonal and solved by parallel cyclic
+// reduction (log2 lanes steps), the damped Newton scale, the stretch test and the non-finite test are reductions. Integration and VSP are
 // the per-vertex functions every path calls (integrate.glsl, vsp.glsl); the rest follows the reference's order
 // (plugin/reference/src/simulator.cpp, local_shape_compliant and the kCompliant branch of length_and_collision).
 // The host uploads the compliant constants in GroupParams: global_stiffness = the global spring's fraction at this h,
@@ -111,17 +111,6 @@ float lanes_max(uint r, float x) {
 }
 
 float lanes_min(uint r, float x) { return -lanes_max(r, -x); }
-
-// Inclusive scan of quaternion products, the later lane on the left: lane r gets q_r q_{r-1} ... q_0.
-vec4 lanes_quat_scan(uint r, vec4 q) {
-  for (uint s = 1u; s < LANES; s <<= 1u) {
-    s_d[r] = q;
-    barrier();
-    if (r >= s) q = quat_mul(q, s_d[r - s]);
-    barrier();
-  }
-  return q;
-}
 
 // ---- the compliant model's passes ------------------------------------------------------------------------------------
 
