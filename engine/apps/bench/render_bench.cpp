@@ -41,6 +41,13 @@ reference::StrandRasterInput reference_input(const TvkRasterCapture& c) {
   return {c.width, c.height, c.vertices_per_strand, c.strands, c.vertices, c.host_depth};
 }
 
+// An error against the reference as JSON keys PREFIXmean, PREFIXp99, PREFIXmax (1/255 units).
+void put_error(nlohmann::json& j, const std::string& prefix, const reference::LayerError& e) {
+  j[prefix + "mean"] = e.mean;
+  j[prefix + "p99"] = e.p99;
+  j[prefix + "max"] = e.max;
+}
+
 double srgb_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
 double srgb_encode(double v) {
   v = std::clamp(v, 0.0, 1.0);
@@ -241,9 +248,7 @@ int run_render_bench(const RenderBenchOptions& o) {
         const double ref_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const reference::LayerError e =
             reference::compare_layers(reference::layer_from_half(cap.width, cap.height, cap.layer), ref);
-        j["error_mean"] = e.mean;
-        j["error_p99"] = e.p99;
-        j["error_max"] = e.max;
+        put_error(j, "error_", e);
         j["hair_pixels"] = e.hair_pixels;
         j["fragments_per_pixel_mean"] =
             stats.hair_pixels ? double(stats.fragments) / double(stats.hair_pixels) : 0.0;
@@ -267,9 +272,7 @@ int run_render_bench(const RenderBenchOptions& o) {
           const reference::LayerError ef = reference::compare_layers(layer, full_ref);
           const reference::LayerError ff =
               reference::compare_layers(reference::layer_from_half(full.width, full.height, full.layer), full_ref);
-          j["error_vs_full_mean"] = ef.mean;
-          j["error_vs_full_p99"] = ef.p99;
-          j["error_vs_full_max"] = ef.max;
+          put_error(j, "error_vs_full_", ef);
           j["error_vs_full_hair_pixels"] = ef.hair_pixels;
           j["full_strands"] = full.strands;
           j["full_error_mean"] = ff.mean;
@@ -335,9 +338,7 @@ int run_render_bench(const RenderBenchOptions& o) {
       const reference::LayerError check = compare_frame(compute_frame, compute_background, ref, compute);
       j["check_compute_frame_error_mean"] = check.mean;
       j["check_compute_frame_error_p99"] = check.p99;
-      j["error_mean"] = e.mean;
-      j["error_p99"] = e.p99;
-      j["error_max"] = e.max;
+      put_error(j, "error_", e);
       j["hair_pixels"] = e.hair_pixels;
       j["error_measure"] = "displayed frame RGB against the reference layer over the frame without hair";
     }
