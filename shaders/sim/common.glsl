@@ -80,26 +80,34 @@ float strand_rest_length(uint g) { return uintBitsToFloat(guide_info[g].z); }
 
 GroupParams guide_params(uint g) { return group[pc.group_base + guide_info[g].x]; }
 
-// The strand's blend of the affine rows at vec4 `slot` of each bone's skinning data, applied to x (w = 1: a point,
-// w = 0: a vector). Slot 0: asset space -> simulation space; slot 6: that map's change since the previous step.
-vec3 skin_apply(uint g, uint slot, vec3 x, float w) {
+// The strand's blend of the affine rows at vec4 `slot` of each bone's skinning data (slot 0: asset space ->
+// simulation space; slot 6: that map's change since the previous step). The same for every vertex of a strand in a
+// substep: the fused frame kernel blends them once per substep.
+struct SkinRows {
+  vec4 r0, r1, r2;
+};
+SkinRows skin_rows(uint g, uint slot) {
   if (TVK_HAS(TVK_FEATURE_SKINNING)) {
     uvec4 bi = bone_index[g];
     vec4 bw = bone_weight[g];
-    vec4 r0 = vec4(0), r1 = vec4(0), r2 = vec4(0);
+    SkinRows m = SkinRows(vec4(0), vec4(0), vec4(0));
     for (uint i = 0u; i < 4u; ++i) {
       if (bw[i] == 0.0) continue;
       uint o = TVK_SKIN_BASE + TVK_SKIN_VEC4 * bi[i] + slot;
-      r0 += bw[i] * skin[o];
-      r1 += bw[i] * skin[o + 1u];
-      r2 += bw[i] * skin[o + 2u];
+      m.r0 += bw[i] * skin[o];
+      m.r1 += bw[i] * skin[o + 1u];
+      m.r2 += bw[i] * skin[o + 2u];
     }
-    return vec3(dot(r0.xyz, x) + w * r0.w, dot(r1.xyz, x) + w * r1.w, dot(r2.xyz, x) + w * r2.w);
+    return m;
   }
   uint o = TVK_SKIN_BASE + slot;
-  return vec3(dot(skin[o].xyz, x) + w * skin[o].w, dot(skin[o + 1u].xyz, x) + w * skin[o + 1u].w,
-              dot(skin[o + 2u].xyz, x) + w * skin[o + 2u].w);
+  return SkinRows(skin[o], skin[o + 1u], skin[o + 2u]);
 }
+// The rows applied to x (w = 1: a point, w = 0: a vector).
+vec3 skin_rows_apply(SkinRows m, vec3 x, float w) {
+  return vec3(dot(m.r0.xyz, x) + w * m.r0.w, dot(m.r1.xyz, x) + w * m.r1.w, dot(m.r2.xyz, x) + w * m.r2.w);
+}
+vec3 skin_apply(uint g, uint slot, vec3 x, float w) { return skin_rows_apply(skin_rows(g, slot), x, w); }
 
 // The guide's anchor at the current substep: its skinned rest root, in simulation space.
 vec3 skin_anchor(uint g) { return skin_apply(g, 0u, rest_pos[strand_base(g)].xyz, 1.0); }

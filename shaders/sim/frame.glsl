@@ -13,6 +13,7 @@
 #ifndef TRESSVK_SIM_FRAME_GLSL
 #define TRESSVK_SIM_FRAME_GLSL
 
+#define TVK_FRAME_KERNEL 1
 vec4 tvk_anchor_now;  // this substep's anchor of the thread's guide (integrate writes it, collision reads it)
 uint tvk_step;        // this substep's index into step_params
 uint tvk_skin_base;   // this substep's first vec4 of skinning data
@@ -29,9 +30,22 @@ uint tvk_skin_base;   // this substep's first vec4 of skinning data
 void run_substep(uint g, uint b, uint s, bool last) {
   tvk_step = pc.step_index + s;
   tvk_skin_base = pc.skin_base + s * pc.skin_stride;
-  for (uint v = 0u; v < N; ++v) integrate_vertex(b + v * TVK_BLOCK, g, v);
-  if (TVK_HAS(TVK_FEATURE_VSP)) {
-    for (uint v = 1u; v < N; ++v) vsp_vertex(b + v * TVK_BLOCK, g, v);
+  IntegrateStrand is = integrate_strand(g);
+  // Integration and VSP vertex by vertex, with what they read of the guide and the substep read once (is, vs): VSP
+  // of vertex v reads the pinned root vertices (integrated first, vertices 0 and 1) and vertex v's own state, so the
+  // order gives the passes' results while each vertex's second history lives only from its integration to its VSP
+  // (frame.comp keeps it in registers). The last substep stores that history (the state's prevprev) at once.
+  integrate_vertex_of(is, b, g, 0u);
+  integrate_vertex_of(is, b + TVK_BLOCK, g, 1u);
+  VspStrand vs;
+  if (TVK_HAS(TVK_FEATURE_VSP)) vs = vsp_strand(g);
+  for (uint v = 0u; v < N; ++v) {
+    uint i = b + v * TVK_BLOCK;
+    if (v >= 2u) integrate_vertex_of(is, i, g, v);
+    if (TVK_HAS(TVK_FEATURE_VSP)) {
+      vsp_vertex_of(vs, i, v);
+      if (last) prevprev[i] = TVK_PREVPREV(i);
+    }
   }
   if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_strand(g);
   length_strand(g, last);
@@ -54,7 +68,6 @@ void main() {
     uint i = b + v * TVK_BLOCK;
     pos[i] = TVK_POS(i);
     prev[i] = TVK_PREV(i);
-    if (TVK_HAS(TVK_FEATURE_VSP)) prevprev[i] = TVK_PREVPREV(i);
   }
   anchor[g] = tvk_anchor_now;
 

@@ -124,81 +124,224 @@ void solve_tip_pinned(uint b) {
   }
 }
 
+// The walk that ends a step (after the length sweeps): the velocity clamp, the non-finite check and the tangents
+// (along the edge leaving v, arriving for the tip; an edge too short to have a direction reuses the previous tangent,
+// and the root falls back to the current root frame's +X). Steps v = 0 .. N-1 in order, each with vertex v and
+// vertex v + 1 (v itself for the tip) final.
+struct FinishWalk {
+  uint g;
+  bool clamp;
+  bool write_tangents;
+  float max_step;
+  float min_len;
+  vec3 last;    // the tangent carried over a too-short edge
+  vec4 before;  // vertex v - 1
+  bool ok;      // every vertex so far finite
+};
+FinishWalk finish_begin(uint g, uint b, GroupParams gp, bool write_tangents) {
+  FinishWalk w;
+  w.g = g;
+  w.clamp = TVK_HAS(TVK_FEATURE_MAX_SPEED) && gp.max_step > 0.0;
+  w.write_tangents = write_tangents;
+  w.max_step = gp.max_step;
+  w.min_len = kDirectionEps * strand_rest_length(g) / float(N - 1u);
+  w.last = vec3(0.0);
+  w.before = vec4(0.0);
+  w.ok = true;
+  return w;
+}
+void finish_step(inout FinishWalk w, uint b, uint v, vec4 p, vec4 next) {
+  if (v == 0u) {
+    w.before = p;
+    // The root frame reads vertices 0 and 1 through memory: both are final by the time the walk is at the root.
+    if (w.write_tangents) w.last = quat_rotate(current_root_frame(w.g), vec3(1, 0, 0));
+  }
+  vec3 q = TVK_PREV(b + v * TVK_BLOCK).xyz;
+  if (w.clamp && p.w > 0.0) {
+    vec3 step = p.xyz - q;
+    float len = length(step);
+    if (len > w.max_step) {
+      q = p.xyz - step * (w.max_step / len);
+      TVK_PREV(b + v * TVK_BLOCK) = vec4(q, p.w);
+    }
+  }
+  w.ok = w.ok && finite3(p.xyz) && finite3(q);
+  vec3 e = v + 1u < N ? next.xyz - p.xyz : p.xyz - w.before.xyz;
+  float len = length(e);
+  if (len > w.min_len) w.last = e / len;
+  if (w.write_tangents) tangent[b + v * TVK_BLOCK] = vec4(w.last, 0.0);
+  w.before = p;
+}
+
+// Wind, a walk from the root: per strand a fixed blend of the wind pyramid; the segment arriving at v takes the
+// component of the wind perpendicular to it (wind bends hair, it does not stretch it). Scale-free: an acceleration
+// times h^2. Steps v = 1 .. N-1 in order, each once vertex v is final for the passes before.
+struct WindWalk {
+  vec3 w;
+  vec3 before;  // vertex v - 1 as pushed, carried (reloading it would wait on its own store)
+};
+WindWalk wind_begin(uint g, uint b) {
+  float a = float(g % 20u) / 20.0;
+  vec3 w = a * (step_params[TVK_STEP].wind[0].xyz + step_params[TVK_STEP].wind[2].xyz) +
+           (1.0 - a) * (step_params[TVK_STEP].wind[1].xyz + step_params[TVK_STEP].wind[3].xyz);
+  return WindWalk(w, TVK_POS(b).xyz);
+}
+void wind_step(inout WindWalk ww, uint b, uint v) {
+  vec4 p = TVK_POS(b + v * TVK_BLOCK);
+  if (p.w > 0.0) {
+    vec3 e = p.xyz - ww.before;
+    float len = length(e);
+    vec3 push = ww.w;
+    if (len > kDirectionEps * rest_info[b + (v - 1u) * TVK_BLOCK].x) {
+      vec3 t = e / len;
+      push = ww.w - dot(ww.w, t) * t;
+    }
+    p = vec4(p.xyz + push, p.w);
+    TVK_POS(b + v * TVK_BLOCK) = p;
+  }
+  ww.before = p.xyz;
+}
+
+// Capsule collision of vertex v (capsules are in simulation space; the strand is relative to its anchor).
+void collide_vertex(uint g, uint b, uint v) {
+  vec3 a = TVK_ANCHOR(g).xyz;
+  vec4 p = TVK_POS(b + v * TVK_BLOCK);
+  if (!(p.w > 0.0)) return;
+  vec3 x = p.xyz;
+  vec3 y = TVK_PREV(b + v * TVK_BLOCK).xyz;
+  bool hit = false;
+  for (uint c = 0u; c < CAPSULE_COUNT; ++c) {
+    vec4 c0 = step_params[TVK_STEP].capsule[2u * c];
+    vec4 c1 = step_params[TVK_STEP].capsule[2u * c + 1u];
+    c0.xyz -= a;
+    c1.xyz -= a;
+    vec3 m0 = step_params[TVK_STEP].capsule_move[2u * c].xyz;
+    vec3 m1 = step_params[TVK_STEP].capsule_move[2u * c + 1u].xyz;
+    vec3 axis = c1.xyz - c0.xyz;
+    float aa = dot(axis, axis);
+    float t = aa > 0.0 ? clamp(dot(x - c0.xyz, axis) / aa, 0.0, 1.0) : 0.0;
+    vec3 centre = c0.xyz + t * axis;
+    float radius = mix(c0.w, c1.w, t);
+    vec3 d = x - centre;
+    float dist = length(d);
+    if (!(dist < radius)) continue;
+    // Push out along the offset from the axis; on the axis itself (no direction), back the way it came.
+    vec3 nrm;
+    if (dist > kDirectionEps * radius) {
+      nrm = d / dist;
+    } else {
+      vec3 back = y - centre;
+      float bl = length(back);
+      nrm = bl > kDirectionEps * radius ? back / bl : vec3(0, 1, 0);
+    }
+    // Remove only velocity into the surface relative to the surface's own move this step (tangential motion
+    // slides on; hair resting on a moving head keeps the head's velocity), fully once the vertex was deeper
+    // than kContactBand * radius and in proportion below that, so the response is continuous in the state.
+    float depth = radius - dist;
+    x = centre + radius * nrm;
+    float vn = dot((x - y) - (m0 + t * (m1 - m0)), nrm);
+    if (vn < 0.0) y += min(depth / (kContactBand * radius), 1.0) * vn * nrm;
+    hit = true;
+  }
+  if (hit) {
+    TVK_POS(b + v * TVK_BLOCK) = vec4(x, p.w);
+    TVK_PREV(b + v * TVK_BLOCK) = vec4(y, p.w);
+  }
+}
+
+// One step of a length sweep: segment v between p (vertex v, as the step before left it) and n (vertex v + 1 as the
+// passes before left it), with pn and the walk's pp the two vertices' previous positions. The last sweep moves only
+// the tip-ward end (follow the leader), so every step ends with each segment at its rest length; the sweeps before it
+// share the correction between both ends. Returns vertex v, final for this sweep, and carries n as the next p.
+struct SweepWalk {
+  vec4 p;
+  vec3 pp;
+  bool last_sweep;
+};
+vec4 sweep_step(inout SweepWalk sw, uint b, uint v, vec4 n, vec3 pn, float rest) {
+  vec4 p = sw.p;
+  vec3 pp = sw.pp;
+  bool last_sweep = sw.last_sweep;
+  float wb = n.w > 0.0 ? 1.0 : 0.0;
+  float wa = (p.w > 0.0 && !(last_sweep && wb > 0.0)) ? 1.0 : 0.0;
+  float wsum = wa + wb;
+  if (wsum > 0.0) {
+    vec3 d = n.xyz - p.xyz;
+    float len = length(d);
+    vec3 dir = d;
+    // Compressed: restored along its direction blended with its direction at the previous step by the missing
+    // length, which stays defined as the segment vanishes (normalize(d) would not); turned back on that
+    // direction (a flip within one step), also by the fold guard, so that the blend never nears zero.
+    vec3 was = pn - pp;
+    float wl = length(was);
+    if (wl > kDirectionEps * rest) {
+      vec3 u = was / wl;
+      float blend = max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
+      if (blend > 0.0) dir = d + blend * u;
+    }
+    float dl = length(dir);
+    if (dl > 0.0) {
+      vec3 corr = (d - (rest / dl) * dir) / wsum;
+      if (wa > 0.0) p = vec4(p.xyz + wa * corr, p.w);
+      if (wb > 0.0) n = vec4(n.xyz - wb * corr, n.w);
+      // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),
+      // which keeps the strand's momentum plausible and removes FTL's energy gain.
+      if (last_sweep && wa == 0.0 && wb > 0.0 && p.w > 0.0) {
+        TVK_PREV(b + v * TVK_BLOCK) = vec4(pp - kFtlVelocityCorrection * corr, p.w);
+      }
+    }
+  }
+  sw.p = n;
+  sw.pp = pn;
+  return p;
+}
+
+// A strand found non-finite at the end of a step is reset, counted and its tangents written again.
+void length_reset_if_not_finite(uint g, uint b, bool ok, bool write_tangents, float min_len) {
+  if (!ok) {
+    // The history is the rest pose carried back by this step's rigid motion, so the strand moves on with the head
+    // (VSP assumes that integration carries the head's previous motion); a non-finite root history falls back to
+    // zero velocity.
+    vec3 q0 = TVK_PREV(b).xyz;
+    if (!finite3(q0)) q0 = vec3(0.0);
+    vec4 back = skin_delta(g);
+    back = vec4(-back.xyz, back.w);
+    for (uint v = 0u; v < N; ++v) {
+      float inv_mass = rest_pos[b + v * TVK_BLOCK].w;
+      vec3 r = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
+      vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
+      TVK_POS(b + v * TVK_BLOCK) = vec4(r, inv_mass);
+      TVK_PREV(b + v * TVK_BLOCK) = y;
+      TVK_PREVPREV(b + v * TVK_BLOCK) = y;
+#ifdef TVK_FRAME_KERNEL
+      // The fused kernel stores the last substep's second history as it is made (frame.glsl): this one replaces it.
+      if (write_tangents && TVK_HAS(TVK_FEATURE_VSP)) prevprev[b + v * TVK_BLOCK] = y;
+#endif
+    }
+    atomicAdd(counters[pc.counter_index], 1u);
+    if (!write_tangents) return;
+    vec3 last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
+    for (uint v = 0u; v < N; ++v) {
+      vec3 e = v + 1u < N ? TVK_POS(b + (v + 1u) * TVK_BLOCK).xyz - TVK_POS(b + v * TVK_BLOCK).xyz
+                          : TVK_POS(b + v * TVK_BLOCK).xyz - TVK_POS(b + (v - 1u) * TVK_BLOCK).xyz;
+      float len = length(e);
+      if (len > min_len) last = e / len;
+      tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
+    }
+  }
+}
+
 void length_strand(uint g, bool write_tangents) {
   GroupParams gp = guide_params(g);
   uint b = strand_base(g);  // vertex v at b + v * TVK_BLOCK
 
   if (TVK_HAS(TVK_FEATURE_WIND)) {
-    // Per strand a fixed blend of the wind pyramid; the segment arriving at v takes the component of the wind
-    // perpendicular to it (wind bends hair, it does not stretch it). Scale-free: an acceleration times h^2.
-    float a = float(g % 20u) / 20.0;
-    vec3 w = a * (step_params[TVK_STEP].wind[0].xyz + step_params[TVK_STEP].wind[2].xyz) +
-             (1.0 - a) * (step_params[TVK_STEP].wind[1].xyz + step_params[TVK_STEP].wind[3].xyz);
-    vec3 before = TVK_POS(b).xyz;  // vertex v - 1 as pushed, carried (reloading it would wait on its own store)
-    for (uint v = 1u; v < N; ++v) {
-      vec4 p = TVK_POS(b + v * TVK_BLOCK);
-      if (p.w > 0.0) {
-        vec3 e = p.xyz - before;
-        float len = length(e);
-        vec3 push = w;
-        if (len > kDirectionEps * rest_info[b + (v - 1u) * TVK_BLOCK].x) {
-          vec3 t = e / len;
-          push = w - dot(w, t) * t;
-        }
-        p = vec4(p.xyz + push, p.w);
-        TVK_POS(b + v * TVK_BLOCK) = p;
-      }
-      before = p.xyz;
-    }
+    WindWalk ww = wind_begin(g, b);
+    for (uint v = 1u; v < N; ++v) wind_step(ww, b, v);
   }
 
   if (TVK_HAS(TVK_FEATURE_COLLISION)) {
-    // Capsules are in simulation space; the strand is relative to its anchor.
-    vec3 a = TVK_ANCHOR(g).xyz;
-    for (uint v = 0u; v < N; ++v) {
-      vec4 p = TVK_POS(b + v * TVK_BLOCK);
-      if (!(p.w > 0.0)) continue;
-      vec3 x = p.xyz;
-      vec3 y = TVK_PREV(b + v * TVK_BLOCK).xyz;
-      bool hit = false;
-      for (uint c = 0u; c < CAPSULE_COUNT; ++c) {
-        vec4 c0 = step_params[TVK_STEP].capsule[2u * c];
-        vec4 c1 = step_params[TVK_STEP].capsule[2u * c + 1u];
-        c0.xyz -= a;
-        c1.xyz -= a;
-        vec3 m0 = step_params[TVK_STEP].capsule_move[2u * c].xyz;
-        vec3 m1 = step_params[TVK_STEP].capsule_move[2u * c + 1u].xyz;
-        vec3 axis = c1.xyz - c0.xyz;
-        float aa = dot(axis, axis);
-        float t = aa > 0.0 ? clamp(dot(x - c0.xyz, axis) / aa, 0.0, 1.0) : 0.0;
-        vec3 centre = c0.xyz + t * axis;
-        float radius = mix(c0.w, c1.w, t);
-        vec3 d = x - centre;
-        float dist = length(d);
-        if (!(dist < radius)) continue;
-        // Push out along the offset from the axis; on the axis itself (no direction), back the way it came.
-        vec3 nrm;
-        if (dist > kDirectionEps * radius) {
-          nrm = d / dist;
-        } else {
-          vec3 back = y - centre;
-          float bl = length(back);
-          nrm = bl > kDirectionEps * radius ? back / bl : vec3(0, 1, 0);
-        }
-        // Remove only velocity into the surface relative to the surface's own move this step (tangential motion
-        // slides on; hair resting on a moving head keeps the head's velocity), fully once the vertex was deeper
-        // than kContactBand * radius and in proportion below that, so the response is continuous in the state.
-        float depth = radius - dist;
-        x = centre + radius * nrm;
-        float vn = dot((x - y) - (m0 + t * (m1 - m0)), nrm);
-        if (vn < 0.0) y += min(depth / (kContactBand * radius), 1.0) * vn * nrm;
-        hit = true;
-      }
-      if (hit) {
-        TVK_POS(b + v * TVK_BLOCK) = vec4(x, p.w);
-        TVK_PREV(b + v * TVK_BLOCK) = vec4(y, p.w);
-      }
-    }
+    for (uint v = 0u; v < N; ++v) collide_vertex(g, b, v);
   }
 
   // A strand pinned at its tip too (TressFX bothEndsImmovable; see the reference's length_and_collision): Newton steps
@@ -218,18 +361,22 @@ void length_strand(uint g, bool write_tangents) {
     }
     length_segment(b, split, free_weight(b, split), free_weight(b, split + 1u));
   }
+  // One walk for the velocity clamp, the non-finite check and the tangents (FinishWalk): without a pinned tip it
+  // rides along the last sweep one vertex behind it (the last sweep's step v + 1 can still move vertex v + 1, and its
+  // step v the history of v), so the strand is walked once; with a pinned tip it walks alone after the clean-up.
+  FinishWalk fw = finish_begin(g, b, gp, write_tangents);
   for (uint it = 0u; it < (tip_pinned ? 0u : gp.length_iterations); ++it) {
     bool last_sweep = it + 1u == gp.length_iterations;
     // The sweep carries the vertex it just moved (and its previous position) to the next edge in registers:
     // reloading it would wait on its own store, a round trip through the memory hierarchy at every vertex of the
     // serial walk. The arithmetic is exactly the same.
-    vec4 p = TVK_POS(b);
-    vec3 pp = TVK_PREV(b).xyz;
+    SweepWalk sw = SweepWalk(TVK_POS(b), TVK_PREV(b).xyz, last_sweep);
     // The next vertex is fetched one edge ahead (it is not written before its turn), so its memory latency overlaps
     // this edge's arithmetic.
     vec4 n_next = TVK_POS(b + TVK_BLOCK);
     vec3 pn_next = TVK_PREV(b + TVK_BLOCK).xyz;
     float rest_next = rest_info[b].x;
+    vec4 finished = sw.p;  // the vertex before v, final: the finish walk's vertex while this sweep steps v
     for (uint v = 0u; v + 1u < N; ++v) {
       vec4 n = n_next;
       vec3 pn = pn_next;
@@ -239,100 +386,29 @@ void length_strand(uint g, bool write_tangents) {
         pn_next = TVK_PREV(b + (v + 2u) * TVK_BLOCK).xyz;
         rest_next = rest_info[b + (v + 1u) * TVK_BLOCK].x;
       }
-      float wb = n.w > 0.0 ? 1.0 : 0.0;
-      // The last sweep moves only the tip-ward end (follow the leader), so every step ends with each segment
-      // at its rest length; the sweeps before it share the correction between both ends.
-      float wa = (p.w > 0.0 && !(last_sweep && wb > 0.0)) ? 1.0 : 0.0;
-      float wsum = wa + wb;
-      if (wsum > 0.0) {
-        vec3 d = n.xyz - p.xyz;
-        float len = length(d);
-        vec3 dir = d;
-        // Compressed: restored along its direction blended with its direction at the previous step by the missing
-        // length, which stays defined as the segment vanishes (normalize(d) would not); turned back on that
-        // direction (a flip within one step), also by the fold guard, so that the blend never nears zero.
-        vec3 was = pn - pp;
-        float wl = length(was);
-        if (wl > kDirectionEps * rest) {
-          vec3 u = was / wl;
-          float blend = max(kCollapse * rest - len, 0.0) + fold_guard(d, len, u);
-          if (blend > 0.0) dir = d + blend * u;
-        }
-        float dl = length(dir);
-        if (dl > 0.0) {
-          vec3 corr = (d - (rest / dl) * dir) / wsum;
-          if (wa > 0.0) p = vec4(p.xyz + wa * corr, p.w);
-          if (wb > 0.0) n = vec4(n.xyz - wb * corr, n.w);
-          // Follow-the-leader moved only the child; its parent gets the opposite of that move as velocity (DFTL),
-          // which keeps the strand's momentum plausible and removes FTL's energy gain.
-          if (last_sweep && wa == 0.0 && wb > 0.0 && p.w > 0.0) {
-            TVK_PREV(b + v * TVK_BLOCK) = vec4(pp - kFtlVelocityCorrection * corr, p.w);
-          }
-        }
-      }
+      vec4 p = sweep_step(sw, b, v, n, pn, rest);
       TVK_POS(b + v * TVK_BLOCK) = p;  // final for this sweep
-      p = n;
-      pp = pn;
+      if (last_sweep && v > 0u) finish_step(fw, b, v - 1u, finished, p);
+      finished = p;
     }
+    vec4 p = sw.p;
     TVK_POS(b + (N - 1u) * TVK_BLOCK) = p;
-  }
-
-  // One walk for the velocity clamp, the non-finite check and the tangents (along the edge leaving v, arriving for
-  // the tip; an edge too short to have a direction reuses the previous tangent, and the root falls back to the
-  // current root frame's +X). A strand found non-finite is reset below and its tangents written again.
-  bool clamp = TVK_HAS(TVK_FEATURE_MAX_SPEED) && gp.max_step > 0.0;
-  float min_len = kDirectionEps * strand_rest_length(g) / float(N - 1u);
-  vec3 last = write_tangents ? quat_rotate(current_root_frame(g), vec3(1, 0, 0)) : vec3(0.0);
-  bool ok = true;
-  vec4 p = TVK_POS(b);
-  vec4 before = p;
-  for (uint v = 0u; v < N; ++v) {
-    vec4 next = v + 1u < N ? TVK_POS(b + (v + 1u) * TVK_BLOCK) : p;
-    vec3 q = TVK_PREV(b + v * TVK_BLOCK).xyz;
-    if (clamp && p.w > 0.0) {
-      vec3 step = p.xyz - q;
-      float len = length(step);
-      if (len > gp.max_step) {
-        q = p.xyz - step * (gp.max_step / len);
-        TVK_PREV(b + v * TVK_BLOCK) = vec4(q, p.w);
-      }
+    if (last_sweep) {
+      finish_step(fw, b, N - 2u, finished, p);
+      finish_step(fw, b, N - 1u, p, p);
     }
-    ok = ok && finite3(p.xyz) && finite3(q);
-    vec3 e = v + 1u < N ? next.xyz - p.xyz : p.xyz - before.xyz;
-    float len = length(e);
-    if (len > min_len) last = e / len;
-    if (write_tangents) tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
-    before = p;
-    p = next;
   }
-
-  if (!ok) {
-    // The history is the rest pose carried back by this step's rigid motion, so the strand moves on with the head
-    // (VSP assumes that integration carries the head's previous motion); a non-finite root history falls back to
-    // zero velocity.
-    vec3 q0 = TVK_PREV(b).xyz;
-    if (!finite3(q0)) q0 = vec3(0.0);
-    vec4 back = skin_delta(g);
-    back = vec4(-back.xyz, back.w);
+  if (tip_pinned || gp.length_iterations == 0u) {
+    vec4 p = TVK_POS(b);
     for (uint v = 0u; v < N; ++v) {
-      float inv_mass = rest_pos[b + v * TVK_BLOCK].w;
-      vec3 r = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
-      vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
-      TVK_POS(b + v * TVK_BLOCK) = vec4(r, inv_mass);
-      TVK_PREV(b + v * TVK_BLOCK) = y;
-      TVK_PREVPREV(b + v * TVK_BLOCK) = y;
-    }
-    atomicAdd(counters[pc.counter_index], 1u);
-    if (!write_tangents) return;
-    last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
-    for (uint v = 0u; v < N; ++v) {
-      vec3 e = v + 1u < N ? TVK_POS(b + (v + 1u) * TVK_BLOCK).xyz - TVK_POS(b + v * TVK_BLOCK).xyz
-                          : TVK_POS(b + v * TVK_BLOCK).xyz - TVK_POS(b + (v - 1u) * TVK_BLOCK).xyz;
-      float len = length(e);
-      if (len > min_len) last = e / len;
-      tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
+      vec4 next = v + 1u < N ? TVK_POS(b + (v + 1u) * TVK_BLOCK) : p;
+      finish_step(fw, b, v, p, next);
+      p = next;
     }
   }
+  bool ok = fw.ok;
+
+  length_reset_if_not_finite(g, b, ok, write_tangents, fw.min_len);
 }
 
 #endif

@@ -42,8 +42,9 @@ SimPath sim_path_from_environment() {
   return path;
 }
 
-uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool vsp) {
-  return kStrandBlock * vertices_per_strand * 16u * (vsp ? 3u : 2u) + (vsp ? 0u : kStrandBlock * 16u);
+uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool /*vsp*/) {
+  // Positions and their history; VSP's second history lives in registers (frame_shared.comp).
+  return kStrandBlock * vertices_per_strand * 16u * 2u;
 }
 
 PassUse frame_pass_use(const SceneTerms& terms, bool shared) {

@@ -19,7 +19,8 @@ enum class SimPath : uint32_t {
 // TRESSVK_SIM_PATH = "fused" (default), "fused-shared" or "passes"; read once per process. Anything else: fused.
 SimPath sim_path_from_environment();
 
-// Shared memory the shared-memory variant needs for N vertices per strand (prevprev only with VSP).
+// Shared memory the shared-memory variant needs for N vertices per strand (positions and history; VSP's second
+// history lives in registers).
 uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool vsp);
 
 // The frame pass of a scene: FEATURES = the scene's feature bits plus kFeatureVsp / kFeatureLocalShape.
