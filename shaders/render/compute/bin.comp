@@ -4,12 +4,29 @@
 // pixels whose centre lies within half its width plus half a pixel of it) and, per tile not entirely in front of
 // it in the host's depth, counts it (kScatter = 0) or writes (its depth nearest the tile centre, segment) at the
 // tile's cursor
-// (kScatter = 1). Both passes take exactly the same decisions.
+// (kScatter = 1). Both passes take exactly the same decisions. The scatter pass also packs the fine pass's list of
+// tiles with entries.
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint kScatter = 0u;
 #include "render/compute/raster_layout.glsl"
 
 void main() {
+  if (kScatter != 0u) {
+    // Also packs the blocks' lists of tiles with entries into the fine pass's list (scan.comp: each block's list
+    // and its offset), since the scatter is the first pass after the scan and runs at least a thread per segment.
+    const uint tiles_count = pc.size.z * pc.size.w, blocks = (tiles_count + 1023u) / 1024u;
+    const uint list = tile_list_at(tiles_count), entries_at = tile_list_entries_at(tiles_count);
+    const uint lists = tile_list_blocks_at(tiles_count), padded = tile_list_padded_at(tiles_count);
+    for (uint k = gl_GlobalInvocationID.x; k < 1024u * blocks; k += 64u * gl_NumWorkGroups.x) {
+      const uint b = k / 1024u, j = k % 1024u;
+      const uint heavy = tiles[lists + 4u * b], light = tiles[lists + 4u * b + 1u];
+      if (j < heavy) {
+        tiles[entries_at + tiles[lists + 4u * b + 2u] + j] = tiles[padded + k];
+      } else if (j < heavy + light) {
+        tiles[entries_at + tiles[list + 4u] + tiles[lists + 4u * b + 3u] + (j - heavy)] = tiles[padded + k];
+      }
+    }
+  }
   const uint seg = gl_GlobalInvocationID.x;
   if (seg >= pc.params.w) return;
   const uint n = dc.counts.x;

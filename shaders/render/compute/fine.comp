@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-// Compute rasterizer, pass 5: one workgroup per 8 x 8 tile, one thread per pixel. The tile's segments are
+// Compute rasterizer, pass 5: one workgroup per 8 x 8 tile with entries (every tile when capturing), one thread
+// per pixel. The tile's segments are
 // composited front to back in depth order, a load of at most kCap entries at a time, so that a tile whose pixels
 // are opaque after a few fragments orders only its nearest entries:
 // - a tile with at most kSlice entries is one load;
@@ -212,8 +213,14 @@ void main() {
     const uvec2 it = split_items[2u + gl_WorkGroupID.x];
     tile = it.x;
     item = it.y;
+  } else if ((pc.params.z & kFlagCapture) != 0u) {
+    tile = gl_WorkGroupID.y * pc.size.z + gl_WorkGroupID.x;  // every tile: a captured layer is whole
   } else {
-    tile = gl_WorkGroupID.y * pc.size.z + gl_WorkGroupID.x;
+    // The tiles with entries only (scan.comp's list, heavy tiles first): the empty tiles of a frame, most of them,
+    // cost no workgroup.
+    const uint k = gl_WorkGroupID.y * kListRow + gl_WorkGroupID.x;
+    if (k >= tiles[tile_list_at(tiles_count) + 3u]) return;
+    tile = tiles[tile_list_entries_at(tiles_count) + k];
   }
   const uint slot0 = tiles[4u * tiles_count + tile];
   if (kSplitPass == 0u && slot0 != kNotSplit) return;  // uniform: the split pass composites this tile

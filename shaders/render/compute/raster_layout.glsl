@@ -10,7 +10,22 @@ layout(std430, set = 0, binding = 7) buffer Verts { vec4 verts[]; };
 // Per tile t of T: [t] segment count, [T+t] first entry, [2T+t] scatter cursor, [3T+t] farthest host depth bits,
 // [4T+t] first split slot (kNotSplit: composited whole), [5T+t] its work items finished (fine.comp); first entry and
 // cursor count within the tile's block of 1024 tiles, whose offset (entries, split slots) is [6T + 2b] (scan.comp).
+// After the blocks' words, at L = tile_list_at(T): the fine pass's indirect dispatch (x, y, z), the number of tiles
+// with entries, the number of those with more than kHeavyTile entries; from tile_list_entries_at(T) those tiles,
+// the heavy ones first, each kind in tile order (fine.comp runs a workgroup per listed tile, not per tile); then per
+// block b (tile_list_blocks_at(T) + 4b) its heavy and light tiles and their offsets in the list; then per block 1024
+// words: its tiles with entries, heavy first (scan.comp writes them, the scatter pass packs them into the list).
 layout(std430, set = 0, binding = 8) buffer Tiles { uint tiles[]; };
+uint tile_list_at(uint tiles_count) { return 6u * tiles_count + 2u * ((tiles_count + 1023u) / 1024u); }
+uint tile_list_entries_at(uint tiles_count) { return tile_list_at(tiles_count) + 8u; }
+uint tile_list_blocks_at(uint tiles_count) { return tile_list_entries_at(tiles_count) + tiles_count; }
+uint tile_list_padded_at(uint tiles_count) {
+  return tile_list_blocks_at(tiles_count) + 4u * ((tiles_count + 1023u) / 1024u);
+}
+// Tiles with more entries than this are listed first: the longest work starts first, so that the dispatch does not
+// end on a few heavy tiles while the GPU idles (fine.comp ranks them with a histogram: kSliceEntries).
+const uint kHeavyTile = 64u;
+const uint kListRow = 32768u;  // listed tiles per row of the fine pass's dispatch (within maxComputeWorkGroupCount)
 // Tile entries: x = sort key (depth bits), y = segment index.
 layout(std430, set = 0, binding = 9) buffer Entries { uvec2 entries[]; };
 // 0: entries requested, 1: entries dropped (over capacity), 2: segments binned, 3: entries dropped from an

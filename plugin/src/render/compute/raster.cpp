@@ -112,6 +112,8 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
                  kStorageRW | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   uint32_t timed = ctx.time_begin(cmd);  // per-pass GPU times (tressvk_get_pass_timings) when timestamps are on
   ctx.vk.vkCmdFillBuffer(cmd, s.tiles.buffer, 0, 4 * tile_count, 0);
+  // The fine pass's list of tiles with entries and its dispatch size (scan.comp, packed by the scatter pass).
+  const VkDeviceSize tile_list = 4 * (6 * VkDeviceSize{tile_count} + 2 * ((tile_count + 1023) / 1024));
   ctx.vk.vkCmdFillBuffer(cmd, s.counters.buffer, 0, 4 * kCounterCount, 0);
   const uint32_t no_quads[4] = {0, 1, 0, 0};  // the composite's draw: 0 vertices (fine.comp adds 6 per hair tile)
   ctx.vk.vkCmdUpdateBuffer(cmd, s.image.buffer, 8 * uint64_t{width} * height, sizeof(no_quads), no_quads);
@@ -163,10 +165,17 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   next("render.scan");
   bind(Pass::scatter);
   ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
-  compute_to_compute(ctx, cmd);
+  // The fine pass reads the tiles buffer the scatter wrote (the packed list) also as its indirect dispatch (written
+  // by the scan; the buffer is one resource to the barrier).
+  memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                 kCompute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, kStorageRW | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
   next("render.bin_scatter");
   bind(per_fragment ? Pass::fine_per_fragment : Pass::fine);
-  ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);
+  if (capture) {
+    ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);  // every tile: the captured layer and host depth are whole
+  } else {
+    ctx.vk.vkCmdDispatchIndirect(cmd, s.tiles.buffer, tile_list);  // the tiles with entries (scan.comp)
+  }
   // No barrier: the split pass composites only the tiles the pass above skips (and its own partial layers).
   bind(per_fragment ? Pass::fine_split_per_fragment : Pass::fine_split);
   ctx.vk.vkCmdDispatchIndirect(cmd, s.split_items.buffer, 0);

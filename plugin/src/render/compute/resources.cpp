@@ -226,7 +226,10 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   const uint64_t pixels = uint64_t{width} * height;
   const uint64_t tiles = uint64_t{(width + kTile - 1) / kTile} * ((height + kTile - 1) / kTile);
   const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(12 * segments, 1u << 20), max_range / 8);
-  const uint64_t tile_bytes = 24 * tiles + 8 * ((tiles + 1023) / 1024);  // 6 words per tile, 2 per block of 1024
+  // 6 words per tile, 2 per block of 1024, then the fine pass's indirect dispatch and list sizes (8 words), list
+  // of tiles, 4 words per block and 1024 per block (raster_layout.glsl).
+  const uint64_t blocks = (tiles + 1023) / 1024;
+  const uint64_t tile_bytes = 24 * tiles + 8 * blocks + 32 + 4 * tiles + 16 * blocks + 4096 * blocks;
   if (32 * vertices > max_range || 8 * pixels > max_range || tile_bytes > max_range)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
                     "tressvk_cmd_raster_hair: %llu strand vertices or a %ux%u view exceed the device's storage "
@@ -235,7 +238,8 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
                     static_cast<unsigned long long>(max_range));
   TvkResult res = grow(ctx, s.verts, std::max<uint64_t>((per_fragment ? 64 : 32) * vertices, 64), storage, Memory::device,
                        "hair compute vertices");
-  if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, tile_bytes, storage, Memory::device, "hair compute tiles");
+  if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, tile_bytes, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, Memory::device,
+                                      "hair compute tiles");
   if (res == TVK_SUCCESS && s.entry_capacity < capacity) {
     res = grow(ctx, s.entries, 8 * capacity, storage, Memory::device, "hair compute tile entries");
     if (res == TVK_SUCCESS) s.entry_capacity = static_cast<uint32_t>(capacity);
