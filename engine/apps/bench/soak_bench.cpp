@@ -6,6 +6,12 @@
 // of every Nth frame is taken as having returned VK_ERROR_DEVICE_LOST, and the host recovers as docs/integration.md
 // says: tressvk_report_device_lost, every call that uses the device refuses, everything is destroyed, the VkDevice
 // and the context are recreated, the asset is loaded again and the instances start over from their rest pose.
+// Under --validation the resident-memory growth is reported and not held against the run: the validation layer's
+// synchronization tracking (1.3.239, Debian 12) keeps access state for every buffer range it has seen, destroyed
+// ones included, so with instance churn the process grows with the layer's state, not ours (lavapipe, 20 s of
+// churn: 151 -> 183 MB with synchronization validation, 148.5 -> 148.6 MB with validation but without it, 124 ->
+// 125 MB over 60 s without validation). The tests run the soak twice: with validation for the messages, without
+// it for resident memory.
 // Exit 0 when all held, 1 otherwise.
 //
 //   tressvk-bench soak --builtin curly --seconds 3600 --json soak.json
@@ -77,6 +83,7 @@ struct Totals {
   double rss_variants_mb = 0;
   std::set<std::string> variants;
   std::map<uint32_t, std::pair<uint64_t, uint64_t>> gpu_bytes_by_instances;  // first and last seen
+  std::map<uint32_t, std::pair<uint64_t, uint64_t>> gpu_bytes_reported;      // the last device's with checks
   bool gpu_flat = true;
 };
 
@@ -194,7 +201,10 @@ int run_soak() {
     ctx = host::create_context(*device, 1);
     asset = host::load_asset(*device, ctx, bytes);
     for (size_t i = 0; i < alive; ++i) create_instance();
-    t.gpu_bytes_by_instances.clear();  // a new device: memory is compared from here on
+    // A new device: memory is compared from here on. The last device with checks is kept for the report (a run
+    // whose time runs out during a recovery has none on the new one).
+    if (!t.gpu_bytes_by_instances.empty()) t.gpu_bytes_reported = t.gpu_bytes_by_instances;
+    t.gpu_bytes_by_instances.clear();
     // What a new device adds to the process until its first check (the driver's per-device state and the
     // pipelines compiled again) is reported on its own; the flat-memory check covers the frames between.
     rebaseline_rss = true;
@@ -324,7 +334,7 @@ int run_soak() {
       }
       t.rss_max_mb = std::max(t.rss_max_mb, rss);
       t.rss_end_mb = rss;
-      if (warm && rss > t.rss_start_mb + o.rss_slack_mb)
+      if (warm && !o.validation && rss > t.rss_start_mb + o.rss_slack_mb)
         fail("resident memory grew from " + std::to_string(t.rss_start_mb) + " to " + std::to_string(rss) + " MB");
     }
     if (o.validation && device->messages().count() > 0) fail("validation messages");
@@ -360,11 +370,15 @@ int run_soak() {
               static_cast<unsigned long long>(t.resets), static_cast<unsigned long long>(t.exploded), t.stretch_max,
               o.max_stretch);
   std::printf("memory      GPU %s over the run (bytes by live instances:", t.gpu_flat ? "flat" : "GREW");
-  for (const auto& [n, v] : t.gpu_bytes_by_instances)
+  if (!t.gpu_bytes_by_instances.empty()) t.gpu_bytes_reported = t.gpu_bytes_by_instances;
+  for (const auto& [n, v] : t.gpu_bytes_reported)
     std::printf(" %u: %llu->%llu", n, static_cast<unsigned long long>(v.first), static_cast<unsigned long long>(v.second));
   std::printf("); resident %.1f MB after warm-up, %.1f MB at the end, %.1f MB max; %+.1f MB while building %zu "
-              "pipeline variants after the warm-up (not held against the run)\n",
-              t.rss_start_mb, t.rss_end_mb, t.rss_max_mb, t.rss_variants_mb, t.variants.size());
+              "pipeline variants after the warm-up (not held against the run)%s\n",
+              t.rss_start_mb, t.rss_end_mb, t.rss_max_mb, t.rss_variants_mb, t.variants.size(),
+              o.validation ? "; not checked under --validation (the layer's synchronization tracking grows with every "
+                             "buffer created: run without --validation for the resident-memory check)"
+                           : "");
   if (o.validation)
     std::printf("validation  %llu message(s)\n", static_cast<unsigned long long>(device->messages().count()));
   std::printf("result      %s%s\n", ok ? "PASS" : "FAIL: ", failure.c_str());
