@@ -38,7 +38,7 @@ TEST_CASE("params: defaults, every section read, and a saved file reads back the
 
   const Params p = parse_params(R"({"tressvk_params": 1,
     "simulation": {"damping": 0.2, "local_iterations": 4, "vsp_coefficient": 0.5},
-    "settings": {"gravity": [0, -5, 0], "step_rate": 120, "max_steps_per_frame": 4},
+    "settings": {"gravity": [0, -5, 0], "step_rate": 120, "max_steps_per_frame": 4, "max_steps_sustained": 6},
     "material": {"base_color": [0.2, 0.1, 0.05], "strand_width": 0.0004, "tip_width_ratio": 0.1},
     "wind": {"direction": [0, 0, -1], "strength": 3},
     "lod": {"start_distance": 2, "end_distance": 6, "min_fraction": 0.3}})", "p.json");
@@ -49,6 +49,7 @@ TEST_CASE("params: defaults, every section read, and a saved file reads back the
   CHECK(p.settings.gravity[1] == -5.0f);
   CHECK(p.settings.time.step_rate == 120.0f);
   CHECK(p.settings.time.max_steps_per_frame == 4);
+  CHECK(p.settings.time.max_steps_sustained == 6);
   CHECK(p.material.base_color[2] == 0.05f);
   CHECK(p.has_strand_width);
   CHECK(p.material.strand_width == 0.0004f);

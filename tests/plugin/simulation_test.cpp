@@ -41,6 +41,7 @@ struct SceneResult {
   uint32_t nan_strands = 0;
   uint32_t exploded_strands = 0;
   std::vector<std::string> passes;  // of the last frame
+  std::vector<uint32_t> steps;      // steps simulated in each frame
 };
 
 std::vector<TvkSimParams> default_params(const asset::HairAsset& hair) {
@@ -70,7 +71,7 @@ void side_by_side(const asset::HairAsset& hair, Body&& body) {
 
 SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, uint32_t frames,
                       std::vector<TvkSimParams> params = {},
-                      TvkSimSettings settings = TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT) {
+                      TvkSimSettings settings = TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT, float frame_dt = 0.0f) {
   if (params.empty()) params = default_params(hair);
   test::PluginContext ctx = test::create_plugin_context();
   TvkAsset a = test::load_asset(ctx.get(), hair);
@@ -81,10 +82,12 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
     const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
     const double median = ref.median_strand_length();
     for (uint32_t f = 0; f < frames; ++f) {
-      const TvkSimFrame frame = reference::scene_frame(scene, f, geometry);
+      TvkSimFrame frame = reference::scene_frame(scene, f, geometry);
+      if (frame_dt > 0.0f && frame.dt > 0.0f) frame.dt = frame_dt;  // the host's rate instead of the scene's
       if (f > 0) ref.set_state(gpu.state().pos, gpu.state().prev, gpu.state().prevprev);
       ref.advance(frame);
       gpu.run_frame(frame);
+      result.steps.push_back(gpu.stats().steps_last_frame);
       const auto err = reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(), median);
       result.step_error_max = std::max(result.step_error_max, err.max_rel);
       const uint32_t n = hair.vertices_per_strand;
@@ -320,6 +323,22 @@ TEST_CASE("strands pinned at both ends match the reference and keep their length
   CHECK(r.exploded_strands == 0);
   CHECK(r.tangent_error_max <= kTangentBound);
   if (!slow_steps) CHECK(r.stretch_max <= kStretchBound);
+}
+
+TEST_CASE("a host at a sustained 24 fps runs 10 steps a frame and matches the reference", "[plugin][simulation]") {
+  // 24 fps needs 10 steps of 240 Hz a frame, more than max_steps_per_frame (8): once the planner has seen the rate is
+  // sustained (4 frames) every frame runs all 10 (docs/simulation.md, "Time policy"), through the per-frame upload
+  // slices, the fused kernel's substep loop and the pass-per-dispatch path's per-step dispatches sized for
+  // TVK_MAX_STEPS_PER_FRAME (16).
+  const asset::HairAsset hair = test::small_groom("curly", 16);
+  const SceneResult r = run_scene(hair, "shake", 10, {}, TVK_SIM_SETTINGS_DEFAULT_INIT, 1.0f / 24.0f);
+  INFO("step error " << r.step_error_max << ", stretch " << r.stretch_max);
+  REQUIRE(r.steps.size() == 10);
+  for (size_t f = 4; f < r.steps.size(); ++f) {
+    INFO("frame " << f);
+    CHECK(r.steps[f] == 10);
+  }
+  check_scene(r);
 }
 
 TEST_CASE("VSP follows the reference at any root pin count", "[plugin][simulation]") {

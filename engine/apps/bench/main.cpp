@@ -49,6 +49,7 @@ nlohmann::json to_json(const bench::CompareResult& r, const bench::CompareOption
       {"rendered_vertices", r.rendered_vertices},
       {"median_strand_length_m", r.median_strand_length_m},
       {"settings", {{"step_rate_hz", o.settings.time.step_rate}, {"max_steps_per_frame", o.settings.time.max_steps_per_frame},
+                    {"max_steps_sustained", o.settings.time.max_steps_sustained},
                     {"frame_dt_s", reference::kSceneFrameDt}, {"local_iterations", o.params.local_iterations},
                     {"length_iterations", o.params.length_iterations}, {"local_stiffness", o.params.local_stiffness},
                     {"global_stiffness", o.params.global_stiffness}, {"vsp_coefficient", o.params.vsp_coefficient}}},

@@ -97,6 +97,7 @@ Params parse_params(std::string_view text, std::string_view name) {
     {"gravity", [&](const json& v, const std::string& f) { r.vec3(v, f, st.gravity, -1000, 1000); }},
     {"step_rate", [&](const json& v, const std::string& f) { st.time.step_rate = r.number(v, f, 30, 480); }},
     {"max_steps_per_frame", [&](const json& v, const std::string& f) { st.time.max_steps_per_frame = r.count(v, f, 1, TVK_MAX_STEPS_PER_FRAME); }},
+    {"max_steps_sustained", [&](const json& v, const std::string& f) { st.time.max_steps_sustained = r.count(v, f, 0, TVK_MAX_STEPS_PER_FRAME); }},
   });
   TvkHairMaterial& m = p.material;
   r.section(root, "material", {
@@ -167,7 +168,8 @@ std::string params_json(const Params& p) {
                      {"vsp_threshold", shortest(s.vsp_threshold)}, {"max_speed", shortest(s.max_speed)},
                      {"tip_separation", shortest(s.tip_separation)}};
   j["settings"] = {{"gravity", v3(p.settings.gravity)}, {"step_rate", shortest(p.settings.time.step_rate)},
-                   {"max_steps_per_frame", p.settings.time.max_steps_per_frame}};
+                   {"max_steps_per_frame", p.settings.time.max_steps_per_frame},
+                   {"max_steps_sustained", p.settings.time.max_steps_sustained}};
   j["material"] = {{"base_color", v3(m.base_color)}, {"tip_color", v3(m.tip_color)}, {"kd", shortest(m.kd)}, {"ks1", shortest(m.ks1)},
                    {"ex1", shortest(m.ex1)}, {"ks2", shortest(m.ks2)}, {"ex2", shortest(m.ex2)}, {"shift1", shortest(m.shift1)}, {"shift2", shortest(m.shift2)},
                    {"strand_width", shortest(m.strand_width)}, {"tip_width_ratio", shortest(m.tip_width_ratio)},

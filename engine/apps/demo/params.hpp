@@ -3,7 +3,7 @@
 //
 //   { "tressvk_params": 1,
 //     "simulation": { "damping": 0.08, "global_stiffness": 0.15, ... every TvkSimParams field },
-//     "settings":   { "gravity": [0, -9.81, 0], "step_rate": 240, "max_steps_per_frame": 8 },
+//     "settings":   { "gravity": [0, -9.81, 0], "step_rate": 240, "max_steps_per_frame": 8, "max_steps_sustained": 16 },
 //     "material":   { "base_color": [r, g, b], "tip_color": [r, g, b], "kd": 0.7, ... every TvkHairMaterial field },
 //     "wind":       { "direction": [1, 0, 0], "strength": 0, "gust_amplitude": 0.5, "gust_frequency": 0.5,
 //                     "cone_angle": 0.35 },

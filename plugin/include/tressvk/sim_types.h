@@ -22,7 +22,7 @@ extern "C" {
 
 /* Hard limits of the GPU layout (shaders/sim/layout.glsl). */
 #define TVK_MAX_CAPSULES 8          /* capsules per instance */
-#define TVK_MAX_STEPS_PER_FRAME 8   /* upper bound for TvkTimeSettings::max_steps_per_frame */
+#define TVK_MAX_STEPS_PER_FRAME 16  /* upper bound for TvkTimeSettings::max_steps_per_frame and max_steps_sustained */
 #define TVK_MAX_ITERATIONS 32       /* upper bound for local_iterations and length_iterations */
 
 /* Per strand group (an asset has one or more groups, e.g. "mohawk", "fur"). Stiffnesses are per-iteration
@@ -87,7 +87,11 @@ typedef struct TvkCapsule {
  * during them moves the hair rigidly, as a teleport does; the kept steps simulate the end of the frame's motion
  * at its real speed (a 0.25 s hitch never explodes, never whips the hair, and leaves no catch-up debt). The head
  * motion of the frame is interpolated across its steps. A frame shorter than one step runs no step and carries
- * its motion over. */
+ * its motion over.
+ * A hitch and a low frame rate are told apart: when the host's rate stays low (the median dt of its last 8 frames,
+ * this one's included, needs more than max_steps_per_frame steps), a frame may run up to max_steps_sustained
+ * steps, so a 24 fps host simulates in real time at the same steps per second as a 60 fps one; a single long
+ * frame among short ones is still a hitch. */
 typedef struct TvkTimeSettings {
   float step_rate;          /* Hz, 30..480. Default 240 (4 steps at 60 fps: gravity moves a free vertex 0.17 mm
                                per step, well under the sub-millimetre segments of real grooms such as the Ratboy
@@ -95,9 +99,13 @@ typedef struct TvkTimeSettings {
                                rounding 10x larger; and 30/60/120/144 fps hosts all simulate on the same grid) */
   uint32_t max_steps_per_frame; /* 1..TVK_MAX_STEPS_PER_FRAME, the reset step of a resetting frame included.
                                Default 8 (a 30 fps frame still runs in full) */
+  uint32_t max_steps_sustained; /* 0..TVK_MAX_STEPS_PER_FRAME: the cap while the host's rate stays low (at least
+                               max_steps_per_frame; 0 = max_steps_per_frame, i.e. a sustained rate under
+                               step_rate / max_steps_per_frame runs in slow motion). Default 16 (real time down
+                               to 15 fps at 240 Hz steps) */
 } TvkTimeSettings;
 
-#define TVK_TIME_SETTINGS_DEFAULT_INIT { 240.0f, 8u }
+#define TVK_TIME_SETTINGS_DEFAULT_INIT { 240.0f, 8u, 16u }
 
 /* An instance's rigid placement in the world: world = translation + rotation * instance_point. Double precision
  * so a character far from the origin keeps full precision: TressVK subtracts the translation in double and the

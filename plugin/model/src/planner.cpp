@@ -104,9 +104,30 @@ void FramePlanner::set_settings(const TvkSimSettings& settings) {
                                          : "time.step_rate must be within 30 Hz..the planner's limit");
   require(settings.time.max_steps_per_frame >= 1 && settings.time.max_steps_per_frame <= limits_.max_steps_per_frame,
           "time.max_steps_per_frame must be within 1..TVK_MAX_STEPS_PER_FRAME");
+  require(settings.time.max_steps_sustained <= TVK_MAX_STEPS_PER_FRAME,
+          "time.max_steps_sustained must be within 0..TVK_MAX_STEPS_PER_FRAME");
   for (float g : settings.gravity) require(std::isfinite(g), "gravity is not finite");
   settings_ = settings;
   h_ = 1.0 / static_cast<double>(settings.time.step_rate);
+}
+
+uint32_t FramePlanner::frame_cap(double dt) {
+  if (dt > 0.0) {
+    recent_dt_[recent_count_ % kRateFrames] = dt;
+    ++recent_count_;
+  }
+  const uint32_t hitch_cap = settings_.time.max_steps_per_frame;
+  const uint32_t sustained_cap = std::max(hitch_cap, settings_.time.max_steps_sustained);
+  const uint32_t known = std::min(recent_count_, kRateFrames);
+  // Half the window must have been seen before a rate counts as sustained (a first long frame is a hitch).
+  if (sustained_cap == hitch_cap || known < kRateFrames / 2) return hitch_cap;
+  // The lower median: the rate counts as low only when more than half of the recent frames were long, so hitches
+  // among short frames stay hitches. One step more than the median frame needs absorbs the host's dt jitter.
+  std::array<double, kRateFrames> d = recent_dt_;
+  const auto mid = d.begin() + (known - 1) / 2;
+  std::nth_element(d.begin(), mid, d.begin() + known);
+  const double need = std::ceil(*mid * static_cast<double>(settings_.time.step_rate) - 1e-6) + 1.0;
+  return static_cast<uint32_t>(std::clamp(need, static_cast<double>(hitch_cap), static_cast<double>(sustained_cap)));
 }
 
 FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
@@ -162,8 +183,8 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   auto host_pose = [&](double alpha) {
     return alpha == 1.0 ? now : Pose{mix(host_last_.t, now.t, alpha), slerp(host_last_.r, now.r, alpha)};
   };
-  // A reset step counts toward the cap, so a frame never plans more than max_steps_per_frame steps in all.
-  const uint32_t step_cap = settings_.time.max_steps_per_frame - (pending_reset_ ? 1u : 0u);
+  // A reset step counts toward the cap, so a frame never plans more than the cap's steps in all.
+  const uint32_t step_cap = frame_cap(static_cast<double>(frame.dt)) - (pending_reset_ ? 1u : 0u);
   uint32_t first = 1;  // the first of the frame's steps that is simulated
   if (n > step_cap) {
     plan.dropped_steps = n - step_cap;

@@ -92,6 +92,52 @@ TEST_CASE("planner: a 0.25 s hitch is capped and the surplus dropped, not owed",
   CHECK(after.steps.size() == 2);  // nothing carried over from the hitch
 }
 
+// A host that runs steadily slower than step_rate / max_steps_per_frame is not hitching: capping each of its frames
+// ran the simulation in slow motion (20 fps at 120 Hz steps with a cap of 4: 4 of 6 steps, 67 % speed).
+TEST_CASE("planner: a sustained low host rate runs every step; a hitch among short frames is still capped",
+          "[reference][planner]") {
+  auto simulated = [](const TvkSimSettings& settings, const std::vector<double>& dts) {
+    FramePlanner planner(settings, {0, 0, 0}, 0);
+    std::vector<uint32_t> steps;
+    for (double dt : dts) {
+      uint32_t n = 0;
+      for (const Substep& s : planner.plan(still_frame(dt)).steps) n += s.reset ? 0u : 1u;
+      steps.push_back(n);
+    }
+    return steps;
+  };
+  TvkSimSettings settings = settings_120hz();  // cap 4, max_steps_sustained 16 (the default)
+  const std::vector<double> at_20fps(12, 1.0 / 20.0);
+  const auto got = simulated(settings, at_20fps);
+  // The first frames cannot tell a low rate from a hitch (half the 8-frame window must be seen): capped.
+  CHECK(got[0] == 3);  // the reset step counts toward the cap
+  CHECK(got[1] == 4);
+  CHECK(got[2] == 4);
+  for (size_t f = 3; f < got.size(); ++f) {
+    INFO("frame " << f);
+    CHECK(got[f] == 6);
+  }
+  // 0 keeps the old rule: every frame capped, slow motion.
+  settings.time.max_steps_sustained = 0;
+  for (uint32_t n : simulated(settings, at_20fps)) CHECK(n <= 4);
+  // A 0.25 s hitch among 60 fps frames (2 steps each) is still a hitch.
+  settings.time.max_steps_sustained = 16;
+  std::vector<double> hitch(10, 1.0 / 60.0);
+  hitch[6] = 0.25;
+  const auto h = simulated(settings, hitch);
+  CHECK(h[6] == 4);
+  CHECK(h[7] == 2);
+  // Three hitches in the last eight frames are still hitches; a rate that stays low for most of them is not.
+  std::vector<double> mixed(12, 1.0 / 60.0);
+  mixed[5] = mixed[7] = mixed[9] = 0.25;
+  const auto m = simulated(settings, mixed);
+  CHECK(m[9] == 4);
+  // The cap while sustained is max_steps_sustained: 10 fps needs 12 steps a frame.
+  settings.time.max_steps_sustained = 8;
+  const auto slow = simulated(settings, std::vector<double>(8, 0.1));
+  CHECK(slow.back() == 8);
+}
+
 TEST_CASE("planner: motion is interpolated across the steps of a frame", "[reference][planner]") {
   FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   planner.plan(still_frame(1.0 / 60.0));

@@ -590,3 +590,65 @@ TEST_CASE("reference: hosts at 144 and 165 Hz move the hair at the steps' true t
     CHECK(worst <= 2e-3 * exact.median);
   }
 }
+
+// Slow motion: a host running steadily at 24 fps needs 10 steps of 240 Hz a frame; capping each frame at
+// max_steps_per_frame (8) dropped 2 of them every frame and ran the hair at 80 % speed. The same swaying, turning
+// head as above for 1.5 s, given at 24 fps; the reference for it is a 240 Hz host that hands every step the pose the
+// 24 fps host's frames interpolate to (lerp of the sway, of the turn's angle), so the two runs differ only in how the
+// planner splits time. Both reset at t = 1/8 s with a frame of dt 0 (the 24 fps planner's first frames cannot yet
+// tell a low rate from a hitch and are capped). Bound 1e-6 of the median length (float dt rounding, 1/24 as a float,
+// is all that differs; measured 1.1e-7); with max_steps_sustained = 0 (every frame capped at 8 steps, the old rule)
+// the same comparison is off by 0.245 of the length (bar: 0.1).
+TEST_CASE("reference: a host at a sustained 24 fps simulates in real time", "[reference][sim]") {
+  auto a = groom("straight", 16);
+  const double key_dt = 1.0 / 24.0;
+  auto keyed = [&](double t, double (*f)(double)) {  // f sampled every 1/24 s, linear in between
+    const double k = std::floor(t / key_dt + 1e-9);
+    const double u = std::clamp(t / key_dt - k, 0.0, 1.0);
+    return (1.0 - u) * f(k * key_dt) + u * f((k + 1.0) * key_dt);
+  };
+  auto sway = [](double t) { return 0.1 * std::sin(2.0 * std::numbers::pi * 1.5 * t); };
+  auto turn = [](double t) { return 0.5 * std::sin(2.0 * std::numbers::pi * 1.2 * t); };
+  auto run = [&](uint32_t host_hz, uint32_t sustained) {
+    TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
+    s.time.max_steps_sustained = sustained;
+    Simulator sim = make_sim(a, default_params(), s);
+    std::vector<std::vector<Vec3>> x;  // positions after each frame
+    const uint32_t reset_frame = host_hz / 8 + 1;  // after frame f < reset_frame the time is f / host_hz
+    for (uint32_t f = 0; f <= host_hz * 3 / 2; ++f) {
+      const bool no_time = f == 0 || f == reset_frame;
+      const double t = static_cast<double>(f < reset_frame ? f : f - 1) / static_cast<double>(host_hz);
+      TvkSimFrame fr{};
+      fr.dt = no_time ? 0.0f : 1.0f / static_cast<float>(host_hz);
+      fr.reset = f == reset_frame ? 1u : 0u;
+      fr.transform = TVK_INSTANCE_TRANSFORM_DEFAULT_INIT;
+      fr.wind = TVK_WIND_DEFAULT_INIT;
+      fr.transform.translation[0] = keyed(t, sway);
+      const double th = keyed(t, turn);
+      fr.transform.rotation[1] = std::sin(0.5 * th);
+      fr.transform.rotation[3] = std::cos(0.5 * th);
+      const FramePlan plan = sim.advance(fr);
+      std::vector<Vec3> xs;
+      const Vec3 o{plan.sim_origin[0], plan.sim_origin[1], plan.sim_origin[2]};
+      for (size_t i = 0; i < sim.rest().rest_pos.size(); ++i) xs.push_back(sim.positions()[i] + o);
+      x.push_back(std::move(xs));
+    }
+    return std::make_pair(x, sim.median_strand_length());
+  };
+  const auto [exact, median] = run(240, 16);
+  auto worst_against_exact = [&](uint32_t sustained) {
+    const auto got = run(24, sustained).first;
+    double worst = 0;
+    // Frame f > 4 of the 24 fps host ends at (f - 1) / 24 s, as the 240 Hz host's frame 10 (f - 1) + 1 does.
+    for (size_t f = 5; f < got.size(); ++f) {
+      const size_t g = 10 * (f - 1) + 1;
+      for (size_t i = 0; i < got[f].size(); ++i) worst = std::max(worst, length(got[f][i] - exact[g][i]));
+    }
+    return worst / median;
+  };
+  const double real_time = worst_against_exact(16), slow_motion = worst_against_exact(0);
+  INFO("24 fps host: largest distance from the 240 Hz host at the same time " << real_time
+       << " of the median length; with every frame capped at 8 steps " << slow_motion);
+  CHECK(real_time <= 1e-6);
+  CHECK(slow_motion > 0.1);
+}

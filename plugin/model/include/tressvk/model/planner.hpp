@@ -12,7 +12,8 @@
 // the kept steps simulate the end of the frame's motion at its real speed and nothing is owed to later frames.
 // The instance (and bone) motion since the last simulated step is interpolated across the frame's steps
 // (lerp/slerp), so k steps see k equal slices of it. A frame with no step carries its motion over to the next
-// step.
+// step. A sustained low host rate is not a hitch: while the median dt of the last kRateFrames frames needs more
+// steps than max_steps_per_frame, a frame may run up to max_steps_sustained (docs/simulation.md, "Time policy").
 #pragma once
 
 #include <array>
@@ -124,6 +125,11 @@ class FramePlanner {
   std::vector<Quat> last_delta_;  // skin deltas of the last planned step
   std::vector<std::array<std::array<double, 4>, 3>> last_rows_;  // skin maps of the last planned step
   std::vector<CapsuleSim> last_caps_;  // capsules of the last planned step (its frame)
+  // The host's recent frame lengths (frames with dt > 0), for telling a sustained low rate from a hitch.
+  static constexpr uint32_t kRateFrames = 8;
+  std::array<double, kRateFrames> recent_dt_{};
+  uint32_t recent_count_ = 0;
+  uint32_t frame_cap(double dt);  // records dt; the most steps this frame may plan, a reset step included
 };
 
 // Checks every host number of a frame: dt, the transform, bone matrices, capsules and wind must be finite, rotations
