@@ -80,6 +80,10 @@ float strand_rest_length(uint g) { return uintBitsToFloat(guide_info[g].z); }
 
 GroupParams guide_params(uint g) { return group[pc.group_base + guide_info[g].x]; }
 
+// A strand its group carries rigidly (shorter than the group's rigid_below): every vertex takes inverse mass 0. The
+// asset's own pins (rest_pos[].w) hold otherwise. Twin: the reference's effective inverse masses (Simulator).
+bool strand_rigid(uint g, GroupParams gp) { return strand_rest_length(g) < gp.rigid_below; }
+
 // The strand's blend of the affine rows at vec4 `slot` of each bone's skinning data (slot 0: asset space ->
 // simulation space; slot 6: that map's change since the previous step). The same for every vertex of a strand in a
 // substep: the fused frame kernel blends them once per substep.

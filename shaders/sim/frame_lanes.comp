@@ -361,7 +361,7 @@ void length_lanes(uint g, uint b, uint v, bool write_tangents) {
     if (vert) {
       vec4 back = skin_delta(g);
       back = vec4(-back.xyz, back.w);
-      float inv_mass = rest_pos[b + v * TVK_BLOCK].w;
+      float inv_mass = strand_rigid(g, guide_params(g)) ? 0.0 : rest_pos[b + v * TVK_BLOCK].w;
       vec3 r = skin_offset(g, v);
       vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
       s_pos[v] = vec4(r, inv_mass);

@@ -13,6 +13,7 @@ struct IntegrateStrand {
   vec3 gravity;    // g h^2
   SkinRows rest;   // the skinning map (slot 0)
   GroupParams gp;
+  bool rigid;      // carried rigidly (strand_rigid)
 };
 IntegrateStrand integrate_strand(uint g) {
   IntegrateStrand s;
@@ -22,12 +23,13 @@ IntegrateStrand integrate_strand(uint g) {
   s.gravity = step_params[TVK_STEP].gravity.xyz;
   s.rest = skin_rows(g, 0u);
   s.gp = guide_params(g);
+  s.rigid = strand_rigid(g, s.gp);
   return s;
 }
 
 void integrate_vertex_of(IntegrateStrand s, uint i, uint g, uint v) {
   vec4 rest = rest_pos[i];
-  float inv_mass = rest.w;
+  float inv_mass = s.rigid ? 0.0 : rest.w;
   // skin_offset(g, v) and skin_anchor(g) with the strand's rows (i is vertex v of guide g).
   vec3 goal = v == 0u ? vec3(0.0) : skin_rows_apply(s.rest, rest.xyz, 0.0);
   uint flags = s.flags;

@@ -83,7 +83,7 @@ layout(std430, set = 0, binding = 11) readonly buffer BoneWeights { vec4 bone_we
 // a reset): applied to a rest root, the move of that guide's anchor.
 layout(std430, set = 0, binding = 12) readonly buffer Skin { vec4 skin[]; };
 
-struct GroupParams {            // per strand group; std430, 48 bytes. Everything already per step (h folded in).
+struct GroupParams {            // per strand group; std430, 64 bytes. Everything already per step (h folded in).
   float velocity_keep;          // exp(-damping * h * 60)
   float global_stiffness;       // 0..1 per step (0 when the GLOBAL_SHAPE feature is off for this group)
   float global_range;           // arc-length fraction of the strand from the root
@@ -96,6 +96,10 @@ struct GroupParams {            // per strand group; std430, 48 bytes. Everythin
   float tip_separation;         // resolved (the asset's baked value when the params said "asset")
   float reserved0;
   float reserved1;
+  float rigid_below;            // m: strands shorter than this are carried rigidly, every vertex pinned (0 = none)
+  float reserved2;
+  float reserved3;
+  float reserved4;
 };
 layout(std430, set = 0, binding = 13) readonly buffer Groups { GroupParams group[]; };
 

@@ -306,8 +306,9 @@ void length_reset_if_not_finite(uint g, uint b, bool ok, bool write_tangents, fl
     if (!finite3(q0)) q0 = vec3(0.0);
     vec4 back = skin_delta(g);
     back = vec4(-back.xyz, back.w);
+    bool rigid = strand_rigid(g, guide_params(g));
     for (uint v = 0u; v < N; ++v) {
-      float inv_mass = rest_pos[b + v * TVK_BLOCK].w;
+      float inv_mass = rigid ? 0.0 : rest_pos[b + v * TVK_BLOCK].w;
       vec3 r = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
       vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
       TVK_POS(b + v * TVK_BLOCK) = vec4(r, inv_mass);

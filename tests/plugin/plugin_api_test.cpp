@@ -86,6 +86,10 @@ TEST_CASE("out-of-range parameters are refused naming the field", "[plugin]") {
     CHECK(tressvk_set_sim_params(inst.handle(), 0, &p) == TVK_ERROR_INVALID_ARGUMENT);
     CHECK(std::string(tressvk_last_error(ctx.get())).find("local_stiffness") != std::string::npos);
     p = TVK_SIM_PARAMS_DEFAULT_INIT;
+    p.rigid_below = std::numeric_limits<float>::quiet_NaN();
+    CHECK(tressvk_set_sim_params(inst.handle(), 0, &p) == TVK_ERROR_INVALID_ARGUMENT);
+    CHECK(std::string(tressvk_last_error(ctx.get())).find("rigid_below") != std::string::npos);
+    p = TVK_SIM_PARAMS_DEFAULT_INIT;
     CHECK(tressvk_set_sim_params(inst.handle(), 7, &p) == TVK_ERROR_INVALID_ARGUMENT);
   }
   tressvk_destroy_asset(a);

@@ -74,7 +74,7 @@ int execute_run_command(const RunCommand& cmd) {
       groom = baker::make_builtin_groom(cmd.builtin, o);
     }
     // Parameters checked the way the plugin checks them (the message names the field).
-    reference::to_group_step(cmd.params, 1.0 / 240.0, groom.tip_separation);
+    reference::to_group_step(cmd.params, 1.0 / 240.0, groom.tip_separation, 1.0);
     reference::FramePlanner(cmd.settings, groom.origin, 0);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tressvk-bench run: %s\n", e.what());

@@ -192,7 +192,7 @@ int execute_sweep_command(const SweepCommand& given) {
     def = {product_settings.time.step_rate, product.local_iterations, product.length_iterations,
            make(0).vertices_per_strand};
     ref_groom = reference::guide_prefix(make(cmd.reference_vertices), std::min(cmd.error_guides, cmd.guides));
-    reference::to_group_step(cmd.params, 1.0 / 240.0, ref_groom.tip_separation);  // checked as the plugin checks
+    reference::to_group_step(cmd.params, 1.0 / 240.0, ref_groom.tip_separation, 1.0);  // checked as the plugin checks
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: --builtin %s: %s\n", me, cmd.builtin.c_str(), e.what());
     return 1;

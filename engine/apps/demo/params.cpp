@@ -91,6 +91,7 @@ Params parse_params(std::string_view text, std::string_view name) {
     {"vsp_threshold", [&](const json& v, const std::string& f) { s.vsp_threshold = r.number(v, f, 0, 1e6); }},
     {"max_speed", [&](const json& v, const std::string& f) { s.max_speed = r.number(v, f, 0, 1e6); }},
     {"tip_separation", [&](const json& v, const std::string& f) { s.tip_separation = r.number(v, f, -1, 100); }},
+    {"rigid_below", [&](const json& v, const std::string& f) { s.rigid_below = r.number(v, f, -1, 1000); }},
   });
   TvkSimSettings& st = p.settings;
   r.section(root, "settings", {
@@ -166,7 +167,7 @@ std::string params_json(const Params& p) {
                      {"local_stiffness", shortest(s.local_stiffness)}, {"local_iterations", s.local_iterations},
                      {"length_iterations", s.length_iterations}, {"vsp_coefficient", shortest(s.vsp_coefficient)},
                      {"vsp_threshold", shortest(s.vsp_threshold)}, {"max_speed", shortest(s.max_speed)},
-                     {"tip_separation", shortest(s.tip_separation)}};
+                     {"tip_separation", shortest(s.tip_separation)}, {"rigid_below", shortest(s.rigid_below)}};
   j["settings"] = {{"gravity", v3(p.settings.gravity)}, {"step_rate", shortest(p.settings.time.step_rate)},
                    {"max_steps_per_frame", p.settings.time.max_steps_per_frame},
                    {"max_steps_sustained", p.settings.time.max_steps_sustained}};

@@ -53,10 +53,15 @@ typedef struct TvkSimParams {
                                in simulation space, i.e. world velocity. 0 = off. Default 50 */
   float tip_separation;     /* >= 0: follow hairs spread from their guide by (1 + tip_separation * t), t = 0 at the
                                root and 1 at the tip. Negative = use the value baked into the asset. Default -1 */
+  float rigid_below;        /* m: strands of this group shorter than this (rest arc length) are carried rigidly by
+                               the skinning, every vertex pinned: a few millimetres of hair barely bends under its
+                               own weight, and resolved into N vertices its sub-millimetre segments mostly amplify
+                               float rounding. 0 = none. Negative = 45 % of the asset's median strand length.
+                               Default -1 */
 } TvkSimParams;
 
 #define TVK_SIM_PARAMS_DEFAULT_INIT \
-  { 0.08f, 0.15f, 0.3f, 0.9f, 2u, 1u, 0.9f, 100.0f, 50.0f, -1.0f }
+  { 0.08f, 0.15f, 0.3f, 0.9f, 2u, 1u, 0.9f, 100.0f, 50.0f, -1.0f, -1.0f }
 
 /* Wind: a world-space acceleration acting on each segment perpendicular to it (so it bends hair, never
  * stretches it), pointing WITH `direction`, spread over a cone so neighbouring strands differ, and gusting as

@@ -85,15 +85,12 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
       require(sum > 0, "bone_weights[" + std::to_string(g) + "] are all zero");
     }
   }
-  // Strands far shorter than the groom's typical strand are carried rigidly by the skinning (every vertex pinned):
-  // a few millimetres of hair resolved into N vertices has segments of tens of micrometres, whose dynamics at
-  // any practical step are chaotic noise and invisible anyway.
-  const double median = median_strand_length(m);
+  // Strands far shorter than the groom's typical strand are carried rigidly by the skinning (every vertex pinned),
+  // by each group's TvkSimParams::rigid_below at run time (applied by the GPU and the reference, not here, so that
+  // instances of one asset can choose): counted here for the default rule.
+  m.median_length = median_strand_length(m);
   for (uint32_t g = 0; g < g_count; ++g) {
-    if (m.strand_length[g] < kRigidStrandRel * median) {
-      m.rigid_strands++;
-      for (uint32_t v = 0; v < n; ++v) m.inv_mass[size_t{g} * n + v] = 0.0;
-    }
+    if (rigid_by_rule(m.strand_length[g], default_rigid_below(m.median_length))) m.rigid_strands++;
   }
   for (uint32_t g = 0; g < g_count; ++g) {
     const size_t b = size_t{g} * n;

@@ -1,5 +1,7 @@
 #include "tressvk/model/planner.hpp"
 
+#include "tressvk/model/model.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -397,7 +399,7 @@ void FramePlanner::add_carry(const Pose& from, const Pose& to) {
   carry_pending_ = true;
 }
 
-GroupStep to_group_step(const TvkSimParams& p, double h, double asset_tip_separation) {
+GroupStep to_group_step(const TvkSimParams& p, double h, double asset_tip_separation, double asset_median_length) {
   auto in01 = [](float x) { return std::isfinite(x) && x >= 0.0f && x <= 1.0f; };
   require(std::isfinite(p.damping) && p.damping >= 0.0f, "params.damping must be >= 0");
   require(in01(p.global_stiffness), "params.global_stiffness must be within 0..1");
@@ -410,6 +412,7 @@ GroupStep to_group_step(const TvkSimParams& p, double h, double asset_tip_separa
   require(std::isfinite(p.vsp_threshold) && p.vsp_threshold > 0.0f, "params.vsp_threshold must be > 0");
   require(std::isfinite(p.max_speed) && p.max_speed >= 0.0f, "params.max_speed must be >= 0");
   require(std::isfinite(p.tip_separation), "params.tip_separation is not finite");
+  require(std::isfinite(p.rigid_below), "params.rigid_below is not finite");
   GroupStep g;
   g.velocity_keep = std::exp(-static_cast<double>(p.damping) * h * 60.0);
   bool global = p.global_stiffness > 0.0f && p.global_range > 0.0f;
@@ -423,6 +426,7 @@ GroupStep to_group_step(const TvkSimParams& p, double h, double asset_tip_separa
   g.vsp_threshold = static_cast<double>(p.vsp_threshold) * h * h;
   g.max_step = static_cast<double>(p.max_speed) * h;
   g.tip_separation = p.tip_separation < 0.0f ? asset_tip_separation : static_cast<double>(p.tip_separation);
+  g.rigid_below = p.rigid_below < 0.0f ? default_rigid_below(asset_median_length) : static_cast<double>(p.rigid_below);
   return g;
 }
 
@@ -481,6 +485,7 @@ sim::GroupParams to_gpu(const GroupStep& g) {
   p.vsp_threshold = static_cast<float>(g.vsp_threshold);
   p.max_step = static_cast<float>(g.max_step);
   p.tip_separation = static_cast<float>(g.tip_separation);
+  p.rigid_below = static_cast<float>(g.rigid_below);
   return p;
 }
 

@@ -10,6 +10,7 @@ namespace tressvk::reference {
 Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
                      const TvkSimSettings& settings, const PlannerLimits& limits)
     : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
+  asset_inv_mass_ = rest_.inv_mass;
   set_params(group_params);
   if (compliant_model_from_environment()) length_model_ = LengthModel::kCompliant;
   median_length_ = reference::median_strand_length(rest_);
@@ -43,8 +44,19 @@ void Simulator::set_params(std::span<const TvkSimParams> group_params) {
 void Simulator::prepare_groups(double h) {
   if (h == prepared_h_) return;
   steps_params_.clear();
-  for (const TvkSimParams& p : params_) steps_params_.push_back(to_group_step(p, h, rest_.asset_tip_separation));
+  for (const TvkSimParams& p : params_)
+    steps_params_.push_back(to_group_step(p, h, rest_.asset_tip_separation, rest_.median_length));
   prepared_h_ = h;
+  // Each group's rigid_below: its short strands take inverse mass 0 at every vertex, the others the asset's (the GPU
+  // applies the same rule as it integrates, strand_rigid in common.glsl).
+  const uint32_t n = rest_.vertices_per_strand;
+  for (uint32_t g = 0; g < rest_.guide_count; ++g) {
+    const bool rigid = rigid_by_rule(rest_.strand_length[g], steps_params_[rest_.group[g]].rigid_below);
+    for (uint32_t v = 0; v < n; ++v) {
+      const size_t i = size_t{g} * n + v;
+      rest_.inv_mass[i] = rigid ? 0.0 : asset_inv_mass_[i];
+    }
+  }
 }
 
 void Simulator::set_state(std::span<const sim::Vec4> pos, std::span<const sim::Vec4> prev,

@@ -120,7 +120,7 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
 TvkResult check_params(Context& ctx, const TvkSimParams& p, const char* what) {
   // The model's conversion validates every field and names the one at fault.
   try {
-    (void)tressvk::model::to_group_step(p, 1.0 / 120.0, 0.0);
+    (void)tressvk::model::to_group_step(p, 1.0 / 120.0, 0.0, 1.0);
   } catch (const std::exception& e) {
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: %s", what, e.what());
   }

@@ -180,7 +180,8 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   auto* ring = static_cast<std::byte*>(inst.ring.mapped);
   const double h = inst.planner->step_length();
   for (size_t g = 0; g < inst.params.size(); ++g) {
-    const model::GroupStep step = model::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation);
+    const model::GroupStep step = model::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation,
+                                                            inst.asset->rest.median_length);
     const sim::GroupParams gp =
         model::compliant_model_from_environment() ? model::to_gpu_compliant(step, h) : model::to_gpu(step);
     std::memcpy(ring + base + inst.groups_offset + g * sizeof(gp), &gp, sizeof(gp));

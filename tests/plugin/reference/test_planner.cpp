@@ -219,7 +219,7 @@ TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][plan
   CHECK(gpu.steps[1].flags[1] == 1u);
   CHECK(gpu.steps[1].gravity[1] == Catch::Approx(-9.81 / (120.0 * 120.0)).epsilon(1e-6));
   CHECK(gpu.steps[1].capsule[1][3] == 0.05f);
-  GroupStep g = to_group_step(default_params(), 1.0 / 120.0, 0.0);
+  GroupStep g = to_group_step(default_params(), 1.0 / 120.0, 0.0, 1.0);
   CHECK(g.velocity_keep == Catch::Approx(std::exp(-0.08 * 0.5)));
   CHECK(g.max_step == Catch::Approx(50.0 / 120.0));
   CHECK(g.vsp_threshold == Catch::Approx(100.0 / (120.0 * 120.0)));
@@ -235,7 +235,7 @@ TEST_CASE("planner: bad input is rejected with the field named", "[reference][pl
   CHECK_THROWS_WITH(planner.plan(f), Catch::Matchers::ContainsSubstring("transform.rotation"));
   TvkSimParams p = default_params();
   p.length_iterations = 0;
-  CHECK_THROWS_WITH(to_group_step(p, 1.0 / 120.0, 0.0), Catch::Matchers::ContainsSubstring("length_iterations"));
+  CHECK_THROWS_WITH(to_group_step(p, 1.0 / 120.0, 0.0, 1.0), Catch::Matchers::ContainsSubstring("length_iterations"));
 }
 
 TEST_CASE("planner: every non-finite host number is refused naming its field", "[reference][planner]") {

@@ -325,7 +325,8 @@ TEST_CASE("reference: a hitch does not whip the hair (the dropped time is carrie
   CHECK(fastest < 6.0);
 }
 
-TEST_CASE("reference: strands tiny compared with the groom are pinned whole", "[reference][sim]") {
+TEST_CASE("reference: strands tiny compared with the groom are pinned whole, by each group's rigid_below",
+          "[reference][sim]") {
   auto a = groom("straight", 16);
   // Shrink guide 0 to 5% of its length about its root.
   const uint32_t n = a.vertices_per_strand;
@@ -335,10 +336,47 @@ TEST_CASE("reference: strands tiny compared with the groom are pinned whole", "[
       a.rest_positions[v][kk] = a.rest_positions[0][kk] + 0.05f * (a.rest_positions[v][kk] - a.rest_positions[0][kk]);
     }
   }
-  ModelRest m = build_model_rest(a);
+  // The asset keeps its own pins (the root vertices); the default rule (45 % of the median) is counted.
+  const ModelRest m = build_model_rest(a);
   CHECK(m.rigid_strands == 1);
-  for (uint32_t v = 0; v < n; ++v) CHECK(m.inv_mass[v] == 0.0);
-  CHECK(m.inv_mass[n + 2] > 0.0);
+  CHECK(m.inv_mass[2] > 0.0);
+  const uint32_t pinned_root = [&] {
+    uint32_t k = 0;
+    while (k < n && m.inv_mass[n + k] == 0.0) ++k;
+    return k;
+  }();
+  REQUIRE(pinned_root < n);
+  auto pinned = [&](const Simulator& s, uint32_t g) {
+    uint32_t c = 0;
+    for (uint32_t v = 0; v < n; ++v) c += s.rest().inv_mass[size_t{g} * n + v] == 0.0 ? 1u : 0u;
+    return c;
+  };
+  // Default (-1): the short strand is pinned whole, the others keep the asset's pins.
+  TvkSimParams p = default_params();
+  CHECK(pinned(make_sim(a, p), 0) == n);
+  CHECK(pinned(make_sim(a, p), 1) == pinned_root);
+  // 0: none is.
+  p.rigid_below = 0.0f;
+  CHECK(pinned(make_sim(a, p), 0) == pinned_root);
+  // In metres: longer than every strand pins them all; changing the parameters applies it at once.
+  Simulator sim = make_sim(a, p);
+  p.rigid_below = static_cast<float>(2.0 * m.median_length);
+  sim.set_params(std::span<const TvkSimParams>(&p, 1));
+  CHECK(pinned(sim, 1) == n);
+  CHECK(pinned(sim, 0) == n);
+  // A rigid strand follows the head as the skinning carries it: after a fast scene it is still its rest shape.
+  const SceneGeometry geo = scene_geometry(sim.rest());
+  for (uint32_t f = 0; f < 20; ++f) {
+    const FramePlan plan = sim.advance(scene_frame("shake", f, geo));
+    (void)plan;
+  }
+  double off = 0;
+  for (uint32_t v = 1; v < n; ++v) {
+    const Vec3 e = sim.positions()[n + v] - sim.positions()[n];
+    const Vec3 r = m.rest_pos[n + v] - m.rest_pos[n];
+    off = std::max(off, std::abs(length(e) - length(r)));
+  }
+  CHECK(off < 1e-9 * m.median_length);
 }
 
 TEST_CASE("reference: wind pushes hair along its direction", "[reference][sim]") {

@@ -90,8 +90,13 @@ struct GroupParams {
   float tip_separation;
   float reserved0;
   float reserved1;
+  float rigid_below;  // m: strands shorter than this are pinned whole (0 = none)
+  float reserved2;
+  float reserved3;
+  float reserved4;
 };
-static_assert(sizeof(GroupParams) == 48);
+static_assert(sizeof(GroupParams) == 64);
+static_assert(offsetof(GroupParams, rigid_below) == 48);
 static_assert(offsetof(GroupParams, local_iterations) == 16);
 static_assert(offsetof(GroupParams, vsp_coefficient) == 24);
 static_assert(offsetof(GroupParams, max_step) == 32);

@@ -73,7 +73,8 @@ struct ModelRest {
   std::vector<Vec3> follow_offset;
   std::vector<double> follow_length;  // rest arc length of the follow (asset tip separation), for health metrics
   uint32_t group_count = 1;
-  uint32_t rigid_strands = 0;  // strands pinned whole because they are shorter than kRigidStrandRel x median
+  double median_length = 0;    // the median of strand_length
+  uint32_t rigid_strands = 0;  // strands the default rigid_below (kRigidStrandRel x median) carries rigidly
   uint32_t pinned_tip_strands = 0;  // strands with a pinned tip and a free vertex (TressFX bothEndsImmovable)
 };
 
@@ -97,5 +98,13 @@ GpuStatic build_gpu_static(const ModelRest& rest);
 
 // Median of the guides' rest lengths: the normalisation of every error metric.
 double median_strand_length(const ModelRest& rest);
+
+// TvkSimParams::rigid_below's default (a negative value): kRigidStrandRel x the asset's median strand length (m).
+inline double default_rigid_below(double median_length) { return kRigidStrandRel * median_length; }
+// Whether a strand of rest arc length `strand_length` is carried rigidly under threshold `rigid_below` (m), compared
+// in float32 as the GPU compares them (GroupParams::rigid_below against the strand length it stores).
+inline bool rigid_by_rule(double strand_length, double rigid_below) {
+  return static_cast<float>(strand_length) < static_cast<float>(rigid_below);
+}
 
 }  // namespace tressvk::model

@@ -149,9 +149,11 @@ struct GroupStep {
   double vsp_threshold = 0;    // a * h^2
   double max_step = 0;         // max_speed * h, 0 = off
   double tip_separation = 0;   // resolved against the asset's
+  double rigid_below = 0;      // m, resolved against the asset's median strand length (0 = none)
 };
-// Throws std::invalid_argument for out-of-range values (naming the field).
-GroupStep to_group_step(const TvkSimParams& params, double h, double asset_tip_separation);
+// Throws std::invalid_argument for out-of-range values (naming the field). asset_median_length: the asset's median
+// strand length (ModelRest::median_length), which a negative rigid_below is a fraction of.
+GroupStep to_group_step(const TvkSimParams& params, double h, double asset_tip_separation, double asset_median_length);
 
 // The conversions the host uploads: everything the shaders read per frame.
 struct GpuFrame {

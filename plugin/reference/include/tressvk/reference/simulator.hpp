@@ -105,7 +105,8 @@ class Simulator {
   Quat skin_delta_before(const Substep& step, uint32_t g) const;
   Quat current_root_frame(const Substep& step, uint32_t g) const;
 
-  ModelRest rest_;
+  ModelRest rest_;                     // inv_mass: with each group's rigid_below applied
+  std::vector<double> asset_inv_mass_;  // the asset's own pins
   std::vector<TvkSimParams> params_;
   std::vector<GroupStep> steps_params_;
   double prepared_h_ = -1;
