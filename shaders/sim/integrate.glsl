@@ -67,7 +67,12 @@ void integrate_vertex_of(IntegrateStrand s, uint i, uint g, uint v) {
   q -= move;
   r -= move;
 
-  vec3 next;
+  // precise: no fused multiply-add contraction (here, in local shape's step and in VSP). Which products a compiler
+  // fuses decides how float32 rounding enters the strand, and tight curls (8.5 vertices per turn) amplify it about
+  // 150-fold: on an NVIDIA H100 the contracted code gave a step error of 1.2e-5 of the strand length on the
+  // tight-curl hard case (the bar is 1e-5), 6.6e-6 without contraction; the cost measured 0 to 2 % (Ratboy 240 Hz
+  // 223 -> 214 us, curly 1M 593 -> 607 us). docs/accuracy.md, "Hard cases".
+  precise vec3 next;
   if (inv_mass > 0.0) {
     next = p + s.gp.velocity_keep * (p - q) + s.gravity;
     if (TVK_HAS(TVK_FEATURE_GLOBAL_SHAPE)) {

@@ -23,8 +23,8 @@ vec4 local_shape_step(inout LocalShapeWalk w, uint b, uint v, float s, vec4 n) {
   vec3 edge_next = rest_edge_local[b + (v + 1u) * TVK_BLOCK].xyz;
   vec4 p = w.p;
   if (w.info.z != 0.0) w.f = frame_align(w.f, p.xyz - w.a.xyz, w.info_in.x);
-  vec3 target = p.xyz + quat_rotate(w.f, w.edge);
-  vec3 d = s * (target - n.xyz);
+  precise vec3 target = p.xyz + quat_rotate(w.f, w.edge);  // precise: see integrate.glsl
+  precise vec3 d = s * (target - n.xyz);
   if (p.w > 0.0) p = vec4(p.xyz - d, p.w);
   if (n.w > 0.0) n = vec4(n.xyz + d, n.w);
   w.a = p;

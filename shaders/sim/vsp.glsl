@@ -56,8 +56,8 @@ void vsp_vertex_of(VspStrand s, uint i, uint v) {
   // from the host too (skin_delta_before).
   vec3 y = TVK_PREV(i).xyz;
   vec3 z = TVK_PREVPREV(i).xyz;
-  vec3 now = (s.p0 - s.q0) + quat_rotate_delta(s.swing, y - s.q0);
-  vec3 before = (s.q0 - s.r0) + quat_rotate_delta(s.swing_before, z - s.r0);
+  precise vec3 now = (s.p0 - s.q0) + quat_rotate_delta(s.swing, y - s.q0);  // precise: see integrate.glsl
+  precise vec3 before = (s.q0 - s.r0) + quat_rotate_delta(s.swing_before, z - s.r0);
   TVK_POS(i) = vec4(x.xyz + s.c * (now - s.keep * before), x.w);
 }
 
