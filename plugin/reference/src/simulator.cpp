@@ -13,7 +13,6 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
   asset_inv_mass_ = rest_.inv_mass;
   set_params(group_params);
   if (compliant_model_from_environment()) length_model_ = LengthModel::kCompliant;
-  median_length_ = reference::median_strand_length(rest_);
   const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
   pos_.assign(n_all, Vec3{});
   tangent_.assign(n_all, Vec3{});

@@ -133,7 +133,7 @@ TvkResult tressvk_load_asset(TvkContext context, const TvkAssetLoadInfo* info, T
     a->ctx = &ctx;
     a->cpu = std::move(read.asset);
     a->rest = tressvk::model::build_model_rest(a->cpu);
-    a->median_strand_length = static_cast<float>(tressvk::model::median_strand_length(a->rest));
+    a->median_strand_length = static_cast<float>(a->rest.median_length);
     if (TvkResult r = upload_statics(ctx, *a, info->upload_command_buffer); r != TVK_SUCCESS) return r;
     ctx.message(TVK_MESSAGE_INFO, "loaded %s: %u guides x %u vertices, %u follows per guide", source,
                 a->rest.guide_count, a->rest.vertices_per_strand, a->rest.follow_per_guide);

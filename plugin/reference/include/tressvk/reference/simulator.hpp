@@ -93,7 +93,7 @@ class Simulator {
   std::span<const Vec3> tangents() const { return tangent_; }
   // Strands reset to the rest pose after going non-finite, since construction.
   uint64_t nonfinite_resets() const { return nonfinite_resets_; }
-  double median_strand_length() const { return median_length_; }
+  double median_strand_length() const { return rest_.median_length; }
   // Skinned rest position of guide vertex i at a substep.
   Vec3 skinned_rest(const Substep& step, size_t vertex) const;
 
@@ -111,7 +111,6 @@ class Simulator {
   std::vector<GroupStep> steps_params_;
   double prepared_h_ = -1;
   FramePlanner planner_;
-  double median_length_ = 0;
   bool skinned_ = false;  // the current substep blends bones
   std::vector<Vec3> pos_, prev_, prevprev_, tangent_;
   uint64_t nonfinite_resets_ = 0;
