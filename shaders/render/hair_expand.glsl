@@ -15,15 +15,7 @@ struct Expanded {
   float tint;         // per-strand colour factor (colour variation)
 };
 
-// A well-mixed 32-bit hash of the strand index: the same strand always gets the same tint.
-float strand_hash(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return float(x) * (1.0 / 4294967296.0);
-}
+#include "render/strand_hash.glsl"
 
 Expanded expand_vertex(uint vertex_id) {
   const uint kEnd[6] = uint[6](0u, 0u, 1u, 1u, 0u, 1u);

@@ -12,19 +12,14 @@ layout(constant_id = 0) const uint kScatter = 0u;
 
 void main() {
   if (kScatter != 0u) {
-    // Also packs the blocks' lists of tiles with entries into the fine pass's list (scan.comp: each block's list
-    // and its offset), since the scatter is the first pass after the scan and runs at least a thread per segment.
-    const uint tiles_count = pc.size.z * pc.size.w, blocks = (tiles_count + 1023u) / 1024u;
-    const uint list = tile_list_at(tiles_count), entries_at = tile_list_entries_at(tiles_count);
-    const uint lists = tile_list_blocks_at(tiles_count), padded = tile_list_padded_at(tiles_count);
-    for (uint k = gl_GlobalInvocationID.x; k < 1024u * blocks; k += 64u * gl_NumWorkGroups.x) {
-      const uint b = k / 1024u, j = k % 1024u;
-      const uint heavy = tiles[lists + 4u * b], light = tiles[lists + 4u * b + 1u];
-      if (j < heavy) {
-        tiles[entries_at + tiles[lists + 4u * b + 2u] + j] = tiles[padded + k];
-      } else if (j < heavy + light) {
-        tiles[entries_at + tiles[list + 4u] + tiles[lists + 4u * b + 3u] + (j - heavy)] = tiles[padded + k];
-      }
+    // Also lists the tiles with entries for the fine pass, each at its weight bucket's cursor (scan.comp placed
+    // the buckets, heaviest first; the order within a bucket does not change the image), since the scatter is the
+    // first pass after the scan and runs at least a thread per segment.
+    const uint tiles_count = pc.size.z * pc.size.w;
+    const uint cursors = tile_list_buckets_at(tiles_count) + kBuckets, entries_at = tile_list_entries_at(tiles_count);
+    for (uint t = gl_GlobalInvocationID.x; t < tiles_count; t += 64u * gl_NumWorkGroups.x) {
+      const uint v = tiles[t];
+      if (v > 0u) tiles[entries_at + atomicAdd(tiles[cursors + weight_bucket(v)], 1u)] = t;
     }
   }
   const uint seg = gl_GlobalInvocationID.x;

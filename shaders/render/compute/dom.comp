@@ -4,7 +4,9 @@
 // hair seen from the shadowed light. One thread per segment walks it in light-space texels (a sample per texel
 // or less, ends included) and, in pass kPass = 0, keeps each texel's nearest hair depth (atomicMin); in pass 1
 // adds the fibre's covered fraction of the texel (its width in texels times its length per sample) to the layer
-// its depth behind that nearest hair falls into (atomicAdd, fixed point).
+// its depth behind that nearest hair falls into (atomicAdd, fixed point). Pass 2, beside the scatter pass once the
+// vertex shading has read the map, clears it for the next call (nearest hair +infinity, densities 0): the next
+// call then starts with pass 0, without a clear and a barrier of its own before it.
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint kPass = 0u;
 #include "render/compute/raster_layout.glsl"
@@ -30,6 +32,12 @@ LightPoint to_light(uint strand, uint v) {
 }
 
 void main() {
+  if (kPass == 2u) {
+    const uint texels = kDomSize * kDomSize;
+    for (uint k = gl_GlobalInvocationID.x; k < texels * (1u + kDomLayers); k += 64u * gl_NumWorkGroups.x)
+      dom[k] = k < texels ? 0x7f800000u : 0u;
+    return;
+  }
   const uint n = dc.counts.x;
   const uint seg = gl_GlobalInvocationID.x;
   if (seg >= pc.params.w) return;

@@ -216,7 +216,7 @@ void main() {
   } else if ((pc.params.z & kFlagCapture) != 0u) {
     tile = gl_WorkGroupID.y * pc.size.z + gl_WorkGroupID.x;  // every tile: a captured layer is whole
   } else {
-    // The tiles with entries only (scan.comp's list, heavy tiles first): the empty tiles of a frame, most of them,
+    // The tiles with entries only (scan.comp's list, the heaviest first): the empty tiles of a frame, most of them,
     // cost no workgroup.
     const uint k = gl_WorkGroupID.y * kListRow + gl_WorkGroupID.x;
     if (k >= tiles[tile_list_at(tiles_count) + 3u]) return;

@@ -5,26 +5,29 @@
 
 layout(set = 0, binding = 5) uniform sampler2D shadow_map;   // host shadow map (bound to the depth view if none)
 layout(set = 0, binding = 6) uniform sampler2D host_depth;   // host opaque depth, Vulkan 0..1, LESS_OR_EQUAL
-// Per drawn vertex v: [2v] = (x px, y px, depth 0..1 or -1 if culled, width px), [2v+1] = (linear rgb, opacity).
+// Per drawn vertex v: [2v] = (x px, y px, depth 0..1 or -1 if culled, width px) (project.comp), [2v+1] = (linear rgb,
+// opacity) (vertex.comp, which runs beside the scan: no pass reads this buffer while it writes); shaded per fragment,
+// after the D drawn vertices [2(D + v)] = (point, along) and [2(D + v) + 1] = (tangent, tint) (project.comp).
 layout(std430, set = 0, binding = 7) buffer Verts { vec4 verts[]; };
 // Per tile t of T: [t] segment count, [T+t] first entry, [2T+t] scatter cursor, [3T+t] farthest host depth bits,
 // [4T+t] first split slot (kNotSplit: composited whole), [5T+t] its work items finished (fine.comp); first entry and
 // cursor count within the tile's block of 1024 tiles, whose offset (entries, split slots) is [6T + 2b] (scan.comp).
-// After the blocks' words, at L = tile_list_at(T): the fine pass's indirect dispatch (x, y, z), the number of tiles
-// with entries, the number of those with more than kHeavyTile entries; from tile_list_entries_at(T) those tiles,
-// the heavy ones first, each kind in tile order (fine.comp runs a workgroup per listed tile, not per tile); then per
-// block b (tile_list_blocks_at(T) + 4b) its heavy and light tiles and their offsets in the list; then per block 1024
-// words: its tiles with entries, heavy first (scan.comp writes them, the scatter pass packs them into the list).
+// After the blocks' words, at L = tile_list_at(T): the fine pass's indirect dispatch (x, y, z) and the number of
+// tiles with entries; from tile_list_buckets_at(T) the tiles with entries per weight bucket (kBuckets counts, then
+// kBuckets cursors); from tile_list_entries_at(T) those tiles, heaviest bucket first (the fine pass runs a
+// workgroup per listed tile, not per tile, and the tiles that take longest start first).
 layout(std430, set = 0, binding = 8) buffer Tiles { uint tiles[]; };
 uint tile_list_at(uint tiles_count) { return 6u * tiles_count + 2u * ((tiles_count + 1023u) / 1024u); }
-uint tile_list_entries_at(uint tiles_count) { return tile_list_at(tiles_count) + 8u; }
-uint tile_list_blocks_at(uint tiles_count) { return tile_list_entries_at(tiles_count) + tiles_count; }
-uint tile_list_padded_at(uint tiles_count) {
-  return tile_list_blocks_at(tiles_count) + 4u * ((tiles_count + 1023u) / 1024u);
+uint tile_list_buckets_at(uint tiles_count) { return tile_list_at(tiles_count) + 8u; }
+// A tile's weight bucket: eighths of an octave of its entry count, the largest counts in bucket 0 (counts from
+// 2^16 on share it). A fine workgroup's time grows with its tile's entries, and the pass ends when its longest
+// workgroup does: started last, a heavy tile ran on alone for the last third of the pass (measured on an NVIDIA
+// H100); started first, it runs while the light tiles fill the GPU around it.
+const uint kBuckets = 128u;
+uint weight_bucket(uint count) {
+  return kBuckets - 1u - min((floatBitsToUint(float(count)) >> 20u) - (127u << 3u), kBuckets - 1u);
 }
-// Tiles with more entries than this are listed first: the longest work starts first, so that the dispatch does not
-// end on a few heavy tiles while the GPU idles (fine.comp ranks them with a histogram: kSliceEntries).
-const uint kHeavyTile = 64u;
+uint tile_list_entries_at(uint tiles_count) { return tile_list_buckets_at(tiles_count) + 2u * kBuckets; }
 const uint kListRow = 32768u;  // listed tiles per row of the fine pass's dispatch (within maxComputeWorkGroupCount)
 // Tile entries: x = sort key (depth bits), y = segment index.
 layout(std430, set = 0, binding = 9) buffer Entries { uvec2 entries[]; };

@@ -5,10 +5,13 @@
 // per tile, and the work items of the over-full tiles, in two dispatches:
 // - kTop 0, one workgroup of 1024 threads per block of 1024 tiles (1080p: 32 blocks, all at once): a thread per
 //   tile (coalesced), a subgroup scan and a scan of the subgroups' sums give each tile's offset within its block
-//   ([T + t] and [2T + t]); the block's totals (entries, split work items) go to [6T + 2b].
+//   ([T + t] and [2T + t]); the block's totals (entries, split work items) go to [6T + 2b], and its tiles with
+//   entries are counted per weight bucket (raster_layout.glsl);
 // - kTop 1, one workgroup: the exclusive scan of the blocks' totals replaces them by the blocks' offsets, which the
-//   scatter (cursor) and fine (first entry) passes add to the tile's own. A single workgroup walking every tile
-//   in series measured 0.061 ms at 1080p on the H100, where the blocks run side by side.
+//   scatter (cursor) and fine (first entry) passes add to the tile's own, and the scan of the buckets' counts gives
+//   each bucket its place in the fine pass's list, heaviest first (the scatter pass lists the tiles there). A single
+//   workgroup walking every tile in series measured 0.061 ms at 1080p on the H100, where the blocks run side by
+//   side.
 // A tile with more than kSplitAt entries is split into ceil(count / kSplit) work items (fine.comp composites each
 // item's share of the tile's depth range in its own workgroup and the last one to finish merges them): the top
 // pass numbers their slots in tile order, for the blocks that hold any (uniform: none in most frames), writes each
@@ -21,6 +24,7 @@ layout(constant_id = 0) const uint kTop = 0u;
 shared uvec2 s_sub[1024];  // per subgroup: its sums, then the sums of the subgroups before it
 shared uvec2 s_total;      // the workgroup's totals
 shared uint s_used;        // split slots used
+shared uint s_hist[kBuckets];  // this block's tiles with entries per weight bucket
 
 uint items_of(uint v) { return v > kSplitAt ? (v + kSplit - 1u) / kSplit : 0u; }  // work items of an over-full tile
 
@@ -66,18 +70,13 @@ void main() {
       tiles[top + 2u * b] = s_total.x;  // read after workgroup_exclusive's last barrier: s_total is this call's
       tiles[top + 2u * b + 1u] = s_total.y;
     }
-    // The tiles with entries, for the fine pass: the heavy ones first, each kind in tile order (in tile order the
-    // heavy tiles of a dense frame spread over the dispatch; an unordered list measured 8 % slower on 100,000
-    // strands). Here their places within the block; the scatter pass packs the blocks' lists once the top pass
-    // has their offsets.
-    const bool listed = t < tiles_count && v > 0u, heavy = listed && v > kHeavyTile;
-    const uvec2 place = workgroup_exclusive(uvec2(heavy ? 1u : 0u, listed && !heavy ? 1u : 0u));
-    const uvec2 kinds = s_total;
-    if (listed) tiles[tile_list_padded_at(tiles_count) + 1024u * b + (heavy ? place.x : kinds.x + place.y)] = t;
-    if (i == 0u) {
-      tiles[tile_list_blocks_at(tiles_count) + 4u * b] = kinds.x;
-      tiles[tile_list_blocks_at(tiles_count) + 4u * b + 1u] = kinds.y;
-    }
+    // The tiles with entries, for the fine pass, counted per weight bucket (the top pass turns the counts into
+    // the buckets' places in the list, the scatter pass lists the tiles).
+    if (i < kBuckets) s_hist[i] = 0u;
+    barrier();
+    if (t < tiles_count && v > 0u) atomicAdd(s_hist[weight_bucket(v)], 1u);
+    barrier();
+    if (i < kBuckets && s_hist[i] > 0u) atomicAdd(tiles[tile_list_buckets_at(tiles_count) + i], s_hist[i]);
     return;
   }
   if (i == 0u) s_used = 0u;
@@ -92,20 +91,12 @@ void main() {
       tiles[top + 2u * b + 1u] = offset.y;
     }
   }
-  // The listed tiles' block offsets (heavy, light; the light ones' after every heavy one: the scatter adds the
-  // heavy total), and the fine pass's dispatch.
-  const uint lists = tile_list_blocks_at(tiles_count);
-  uvec2 listed = uvec2(0u);
-  for (uint b0 = 0u; b0 < blocks; b0 += 1024u) {  // uniform
-    const uint b = b0 + i;
-    const uvec2 in_block = b < blocks ? uvec2(tiles[lists + 4u * b], tiles[lists + 4u * b + 1u]) : uvec2(0u);
-    const uvec2 offset = listed + workgroup_exclusive(in_block);
-    listed += s_total;
-    if (b < blocks) {
-      tiles[lists + 4u * b + 2u] = offset.x;
-      tiles[lists + 4u * b + 3u] = offset.y;
-    }
-  }
+  // The weight buckets' places in the fine pass's list (the heaviest first): the scatter pass's cursors.
+  const uint buckets = tile_list_buckets_at(tiles_count);
+  const uint in_bucket = i < kBuckets ? tiles[buckets + i] : 0u;
+  const uint place = workgroup_exclusive(uvec2(in_bucket, 0u)).x;
+  const uint all = s_total.x;  // s_total stays until the next call's first barrier
+  if (i < kBuckets) tiles[buckets + kBuckets + i] = place;
   memoryBarrierBuffer();
   barrier();
   if (carry.y > 0u) {  // uniform: some tile is over-full; number the split slots of the blocks that hold any
@@ -128,9 +119,8 @@ void main() {
     if (carry.x > pc.params.x) counters[1] = carry.x - pc.params.x;  // entries that did not fit
     split_items[0] = uvec2(s_used, 1u);  // the split pass's indirect dispatch: (slots used, 1, 1)
     split_items[1] = uvec2(1u, 0u);
-    const uint list = tile_list_at(tiles_count), all = listed.x + listed.y;  // the fine pass's: rows of kListRow
+    const uint list = tile_list_at(tiles_count);  // the fine pass's dispatch: rows of kListRow
     tiles[list + 3u] = all;
-    tiles[list + 4u] = listed.x;
     tiles[list] = min(all, kListRow);
     tiles[list + 1u] = (all + kListRow - 1u) / kListRow;
     tiles[list + 2u] = 1u;

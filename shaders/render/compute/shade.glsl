@@ -54,12 +54,3 @@ float shadow_transmittance(vec3 p, Material m) {
 
 #include "render/hair_lighting.glsl"
 
-float strand_hash(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return float(x) * (1.0 / 4294967296.0);
-}
-

@@ -1,7 +1,10 @@
-// tressvk_cmd_raster_hair: the compute strand rasterizer's passes, recorded outside the host's passes.
-//   clear -> [deep opacity map: nearest hair -> fibre layers] -> [vertex shading | tile host depth] -> count -> scan
-//   -> scatter -> [fine (sort + composite per tile) | fine split (over-full tiles in shares, indirect)]
-// with a compute-to-compute memory barrier between dependent passes (docs/rendering.md, "The compute path").
+// tressvk_cmd_raster_hair: the compute strand rasterizer's passes, recorded outside the host's passes, in five
+// dependent steps of passes that run side by side:
+//   [deep opacity map: nearest hair | tile host depth (+ zeroed counts) | vertex projection]
+//   -> [deep opacity map: fibre layers | count] -> [vertex shading | scan] -> scan top -> scatter (+ the deep
+//   opacity map cleared for the next call) -> [fine split (over-full tiles in shares, indirect) | fine (sort +
+//   composite per tile)]
+// with a compute-to-compute memory barrier between steps (docs/rendering.md, "The compute path").
 #include "state.hpp"
 
 #include "core/objects.hpp"
@@ -103,57 +106,63 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
             {s.split_slots, 0, 0, 0}};
 
   // The previous frame's raster and composite calls used the same buffers: wait for them (and make their
-  // writes available) before clearing.
+  // writes available) before this call writes them.
   memory_barrier(ctx, cmd,
                  kCompute | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                 kCompute | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                 kCompute | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                  kStorageRW | VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
   uint32_t timed = ctx.time_begin(cmd);  // per-pass GPU times (tressvk_get_pass_timings) when timestamps are on
-  ctx.vk.vkCmdFillBuffer(cmd, s.tiles.buffer, 0, 4 * tile_count, 0);
-  // The fine pass's list of tiles with entries and its dispatch size (scan.comp, packed by the scatter pass).
-  const VkDeviceSize tile_list = 4 * (6 * VkDeviceSize{tile_count} + 2 * ((tile_count + 1023) / 1024));
-  ctx.vk.vkCmdFillBuffer(cmd, s.counters.buffer, 0, 4 * kCounterCount, 0);
-  const uint32_t no_quads[4] = {0, 1, 0, 0};  // the composite's draw: 0 vertices (fine.comp adds 6 per hair tile)
-  ctx.vk.vkCmdUpdateBuffer(cmd, s.image.buffer, 8 * uint64_t{width} * height, sizeof(no_quads), no_quads);
-  const VkDeviceSize dom_texels = VkDeviceSize{kDomSize} * kDomSize;
-  if (shadowed) {
+  if (shadowed && s.dom_dirty) {
+    // A new map, or one a per-fragment fine pass read last: clear it (otherwise the last scatter pass did).
+    const VkDeviceSize dom_texels = VkDeviceSize{kDomSize} * kDomSize;
     ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 0, 4 * dom_texels, 0x7f800000u);  // nearest hair: +infinity
     ctx.vk.vkCmdFillBuffer(cmd, s.dom.buffer, 4 * dom_texels, 4 * dom_texels * kDomLayers, 0);
+    memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute,
+                   kStorageRW);
   }
-  memory_barrier(ctx, cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, kCompute, kStorageRW);
-  const auto next = [&](const char* finished) {  // closes the timed pass `finished`, opens the next
+  // Beside the scatter pass, once the vertex shading has read it, the deep opacity map is cleared for the next
+  // call; shaded per fragment the fine pass reads it after that, so the next call clears it with fills instead.
+  const bool clean_dom = shadowed && !per_fragment;
+  if (shadowed) s.dom_dirty = !clean_dom;
+  // The fine pass's list of tiles with entries and its dispatch size (scan.comp, packed by the scatter pass).
+  const VkDeviceSize tile_list = 4 * (6 * VkDeviceSize{tile_count} + 2 * ((tile_count + 1023) / 1024));
+  const auto next = [&](const char* finished) {  // closes the timed step `finished`, opens the next
     ctx.time_end(cmd, timed, finished);
     timed = ctx.time_begin(cmd);
   };
-  next("render.clear");
 
   ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.layout, 0, 1, &set, 0, nullptr);
   ctx.vk.vkCmdPushConstants(cmd, s.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   const auto bind = [&](Pass p) {
     ctx.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelines[static_cast<size_t>(p)]);
   };
-  if (shadowed) {  // the deep opacity map, read by the vertex shading
+  // Step 1: the nearest hair of the deep opacity map, the tiles' farthest host depth (and the zeroed counts), the
+  // vertices' projection; no barrier between them (each writes what the others do not touch).
+  const uint32_t segment_groups = std::max(1u, groups(segments, 64));
+  if (shadowed) {
     bind(Pass::dom_front);
-    ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
-    compute_to_compute(ctx, cmd);
-    bind(Pass::dom_layers);
-    ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
-    compute_to_compute(ctx, cmd);
-    next("render.dom");
+    ctx.vk.vkCmdDispatch(cmd, segment_groups, 1, 1);
   }
-  bind(Pass::vertex);
-  ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
-  next("render.vertex");
-  bind(Pass::tile_depth);  // no barrier from the vertex pass: its time may overlap the vertex pass's
+  bind(Pass::tile_depth);
   ctx.vk.vkCmdDispatch(cmd, (tiles_x + 7) / 8, tiles_y, 1);  // a row of 8 tiles per workgroup
+  bind(Pass::project);
+  ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
   compute_to_compute(ctx, cmd);
-  next("render.tile_depth");
+  next("render.project");
+  // Step 2: the fibre layers of the deep opacity map beside the count.
+  if (shadowed) {
+    bind(Pass::dom_layers);
+    ctx.vk.vkCmdDispatch(cmd, segment_groups, 1, 1);
+  }
   bind(Pass::count);
-  ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+  ctx.vk.vkCmdDispatch(cmd, segment_groups, 1, 1);
   compute_to_compute(ctx, cmd);
   next("render.bin_count");
+  // Step 3: the vertex shading (it reads the deep opacity map) beside the scan's blocks; then the scan's top.
+  bind(Pass::shade);
+  ctx.vk.vkCmdDispatch(cmd, groups(uint64_t{drawn} * n, 64), 1, 1);
   bind(Pass::scan);  // offsets within blocks of 1024 tiles, then the blocks' offsets
   ctx.vk.vkCmdDispatch(cmd, static_cast<uint32_t>((tile_count + 1023) / 1024), 1, 1);
   compute_to_compute(ctx, cmd);
@@ -162,9 +171,13 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   // The scan also wrote the split pass's indirect dispatch size.
   memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                  kCompute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, kStorageRW | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
-  next("render.scan");
+  next("render.shade_scan");
   bind(Pass::scatter);
-  ctx.vk.vkCmdDispatch(cmd, std::max(1u, groups(segments, 64)), 1, 1);
+  ctx.vk.vkCmdDispatch(cmd, segment_groups, 1, 1);
+  if (clean_dom) {  // 64 words per thread
+    bind(Pass::dom_clean);
+    ctx.vk.vkCmdDispatch(cmd, kDomSize * kDomSize * (1 + kDomLayers) / (64 * 64), 1, 1);
+  }
   // The fine pass reads the tiles buffer the scatter wrote (the packed list) also as its indirect dispatch (written
   // by the scan; the buffer is one resource to the barrier).
   memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

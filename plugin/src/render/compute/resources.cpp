@@ -84,7 +84,8 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
     if (!r.compute) return ctx.fail(TVK_ERROR_OUT_OF_MEMORY, "hair compute rasterizer: out of host memory");
   }
   State& s = *r.compute;
-  if (s.pipelines[static_cast<size_t>(Pass::fine_split_per_fragment)]) return TVK_SUCCESS;
+  if (std::all_of(s.pipelines.begin(), s.pipelines.end(), [](VkPipeline p) { return p != VK_NULL_HANDLE; }))
+    return TVK_SUCCESS;
   if (!s.set_layout) {
     std::array<VkDescriptorSetLayoutBinding, kBindingCount> b{};
     for (uint32_t i = 0; i < kBindingCount; ++i) {
@@ -149,7 +150,8 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
   }
   auto& p = s.pipelines;
   TvkResult res = TVK_SUCCESS;
-  if (res == TVK_SUCCESS && !p[0]) res = make_compute(ctx, s.layout, k_spv_vertex_comp, {0}, p[0]);
+  if (res == TVK_SUCCESS && !p[0]) res = make_compute(ctx, s.layout, k_spv_project_comp, {0}, p[0]);
+  if (res == TVK_SUCCESS && !p[12]) res = make_compute(ctx, s.layout, k_spv_vertex_comp, {0}, p[12]);
   if (res == TVK_SUCCESS && !p[1]) res = make_compute(ctx, s.layout, k_spv_tile_depth_comp, {0}, p[1]);
   if (res == TVK_SUCCESS && !p[2]) res = make_compute(ctx, s.layout, k_spv_bin_comp, {0}, p[2]);
   if (res == TVK_SUCCESS && !p[3]) res = make_compute(ctx, s.layout, k_spv_scan_comp, {0}, p[3]);
@@ -162,6 +164,7 @@ TvkResult ensure_pipelines(TvkRenderer_T& r) {
                        {kSliceCapacity, kSliceEntries, kReorderWindow, 0, 0, kSettleFragments}, p[5]);
   if (res == TVK_SUCCESS && !p[6]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {0}, p[6]);
   if (res == TVK_SUCCESS && !p[7]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {1}, p[7]);
+  if (res == TVK_SUCCESS && !p[13]) res = make_compute(ctx, s.layout, k_spv_dom_comp, {2}, p[13]);
   if (res == TVK_SUCCESS && !p[8])
     res = make_compute(ctx, s.layout, k_spv_fine_comp,
                        {kSliceCapacity, kSliceEntries, kReorderWindow, 1, 0, kSettleFragments}, p[8]);
@@ -226,18 +229,18 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   const uint64_t pixels = uint64_t{width} * height;
   const uint64_t tiles = uint64_t{(width + kTile - 1) / kTile} * ((height + kTile - 1) / kTile);
   const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(12 * segments, 1u << 20), max_range / 8);
-  // 6 words per tile, 2 per block of 1024, then the fine pass's indirect dispatch and list sizes (8 words), list
-  // of tiles, 4 words per block and 1024 per block (raster_layout.glsl).
+  // 6 words per tile, 2 per block of 1024, then the fine pass's indirect dispatch and list size (8 words), a count
+  // and a cursor per weight bucket (2 x 128 words) and the list of tiles (raster_layout.glsl).
   const uint64_t blocks = (tiles + 1023) / 1024;
-  const uint64_t tile_bytes = 24 * tiles + 8 * blocks + 32 + 4 * tiles + 16 * blocks + 4096 * blocks;
+  const uint64_t tile_bytes = 24 * tiles + 8 * blocks + 32 + 8 * 128 + 4 * tiles;
   if (32 * vertices > max_range || 8 * pixels > max_range || tile_bytes > max_range)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
                     "tressvk_cmd_raster_hair: %llu strand vertices or a %ux%u view exceed the device's storage "
                     "buffer range (%llu bytes)",
                     static_cast<unsigned long long>(vertices), width, height,
                     static_cast<unsigned long long>(max_range));
-  TvkResult res = grow(ctx, s.verts, std::max<uint64_t>((per_fragment ? 64 : 32) * vertices, 64), storage, Memory::device,
-                       "hair compute vertices");
+  TvkResult res = grow(ctx, s.verts, std::max<uint64_t>((per_fragment ? 64 : 32) * vertices, 64), storage,
+                       Memory::device, "hair compute vertices");
   if (res == TVK_SUCCESS) res = grow(ctx, s.tiles, tile_bytes, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, Memory::device,
                                       "hair compute tiles");
   if (res == TVK_SUCCESS && s.entry_capacity < capacity) {
@@ -259,9 +262,11 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.image, 8 * pixels + 16 + 8 * tiles, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                Memory::device, "hair compute layer");
-  if (res == TVK_SUCCESS)
+  if (res == TVK_SUCCESS && !s.dom) {
     res = grow(ctx, s.dom, 4ull * kDomSize * kDomSize * (1 + kDomLayers), storage, Memory::device,
                "hair deep opacity map");
+    s.dom_dirty = true;
+  }
   if (res == TVK_SUCCESS)
     res = grow(ctx, s.stats_readback, 4 * kCounterCount + 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::host_readback,
                "hair compute statistics");

@@ -17,8 +17,8 @@ enum Binding : uint32_t {
 };
 
 enum class Pass : uint32_t {
-  vertex = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, fine_per_fragment, fine_split,
-  fine_split_per_fragment, scan_top, pass_count
+  project = 0, tile_depth, count, scan, scatter, fine, dom_front, dom_layers, fine_per_fragment, fine_split,
+  fine_split_per_fragment, scan_top, shade, dom_clean, pass_count
 };
 
 struct Push {
@@ -68,6 +68,9 @@ struct State {
   VkDeviceSize shadow_counter_offset = 0;  // where that counter is (0: no shadow call yet)
 
   GpuBuffer verts, tiles, entries, counters, image, capture_depth, dom;
+  // The deep opacity map is not known to be clear (new, or last read by a per-fragment fine pass, which the
+  // scatter pass cannot clear it before): the next raster call clears it with transfer fills first.
+  bool dom_dirty = true;
   GpuBuffer split_items, partials;  // over-full tiles' work items (and the split pass's dispatch), partial layers
   uint32_t entry_capacity = 0;
   uint32_t split_slots = 0;     // capacity of `partials` in work items
