@@ -209,8 +209,7 @@ void main() {
   const uint tiles_count = pc.size.z * pc.size.w;
   uint tile, item = 0u;
   if (kSplitPass != 0u) {
-    if (gl_WorkGroupID.x >= split_items[0].x) return;
-    const uvec2 it = split_items[2u + gl_WorkGroupID.x];
+    const uvec2 it = split_items[4u + gl_WorkGroupID.x];  // the dispatch is the exact number of items
     tile = it.x;
     item = it.y;
   } else if ((pc.params.z & kFlagCapture) != 0u) {

@@ -12,8 +12,8 @@ layout(std430, set = 0, binding = 7) buffer Verts { vec4 verts[]; };
 // Per tile t of T: [t] segment count, [T+t] first entry, [2T+t] scatter cursor, [3T+t] farthest host depth bits,
 // [4T+t] first split slot (kNotSplit: composited whole), [5T+t] its work items finished (fine.comp); first entry and
 // cursor count within the tile's block of 1024 tiles, whose offset (entries, split slots) is [6T + 2b] (scan.comp).
-// After the blocks' words, at L = tile_list_at(T): the fine pass's indirect dispatch (x, y, z) and the number of
-// tiles with entries; from tile_list_buckets_at(T) the tiles with entries per weight bucket (kBuckets counts, then
+// After the blocks' words, at L = tile_list_at(T): the fine pass's indirect dispatch (x, y, z), the number of
+// tiles with entries and the number with more than kSplitFewAt entries (scan.comp); from tile_list_buckets_at(T) the tiles with entries per weight bucket (kBuckets counts, then
 // kBuckets cursors); from tile_list_entries_at(T) those tiles, heaviest bucket first (the fine pass runs a
 // workgroup per listed tile, not per tile, and the tiles that take longest start first).
 layout(std430, set = 0, binding = 8) buffer Tiles { uint tiles[]; };
@@ -40,8 +40,9 @@ layout(std430, set = 0, binding = 11) buffer Image { uvec2 image[]; };
 // Capture only: the host depth the fine pass read, per pixel.
 layout(std430, set = 0, binding = 12) buffer Capture { float capture_depth[]; };
 
-// Over-full tiles' work items (scan.comp -> fine.comp): [0], [1] the split pass's indirect dispatch (slots used,
-// 1, 1), [2 + slot] = (tile, item index).
+// Over-full tiles' work items (scan.comp -> fine.comp): [0], [1] the indirect dispatch (slots used, 1, 1) of the
+// split pass recorded after the fine pass, [2], [3] that of the one recorded before it (one of the two is empty),
+// [4 + slot] = (tile, item index).
 layout(std430, set = 0, binding = 14) buffer Split { uvec2 split_items[]; };
 // Per split slot, 64 pixels: the item's premultiplied rgba (two packHalf2x16 words), merged front to back by the
 // tile's last item to finish (written and read by different workgroups of one dispatch: coherent).
@@ -59,8 +60,11 @@ layout(push_constant) uniform Raster {
 
 const uint kTile = 8u;          // tile edge in pixels (8 x 8 = one workgroup of the fine pass)
 // A tile with more than kSplitAt entries is composited by ceil(count / kSplit) workgroups, each a contiguous share
-// of its depth-key histogram (kSplit* in plugin/src/render/compute/state.hpp; pc.split.x items at most).
+// of its depth-key histogram (kSplit* in plugin/src/render/compute/state.hpp; pc.split.x items at most); so is one
+// with more than kSplitFewAt entries when at most kSplitFew tiles of the call have that many (scan.comp).
 const uint kSplitAt = 8192u;
+const uint kSplitFewAt = 2048u;
+const uint kSplitFew = 512u;
 const uint kSplit = 1024u;
 const uint kNotSplit = 0xffffffffu;
 const uint kFlagCapture = 1u;

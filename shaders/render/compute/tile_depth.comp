@@ -38,6 +38,7 @@ void main() {
     if (lid < 8u) counters[lid] = 0u;  // kCounterCount
     const uint tiles_count = pc.size.z * pc.size.w;
     for (uint b = lid; b < kBuckets; b += 64u) tiles[tile_list_buckets_at(tiles_count) + b] = 0u;
+    if (lid == 0u) tiles[tile_list_at(tiles_count) + 4u] = 0u;  // tiles over kSplitFewAt entries (scan.comp)
     const uint at = pc.size.x * pc.size.y;  // after the layer: VkDrawIndirectCommand (fine.comp adds 6 per tile)
     if (lid == 0u) image[at] = uvec2(0u, 1u);
     if (lid == 1u) image[at + 1u] = uvec2(0u);

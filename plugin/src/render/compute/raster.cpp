@@ -183,14 +183,19 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   memory_barrier(ctx, cmd, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                  kCompute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, kStorageRW | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
   next("render.bin_scatter");
+  // The split pass before the fine pass when it splits a few tiles, after it when many (scan.comp chose: one of the
+  // two indirect dispatches is empty). No barrier between them: the split pass composites only the tiles the fine
+  // pass skips (and its own partial layers).
+  const Pass split = per_fragment ? Pass::fine_split_per_fragment : Pass::fine_split;
+  bind(split);
+  ctx.vk.vkCmdDispatchIndirect(cmd, s.split_items.buffer, 16);
   bind(per_fragment ? Pass::fine_per_fragment : Pass::fine);
   if (capture) {
     ctx.vk.vkCmdDispatch(cmd, tiles_x, tiles_y, 1);  // every tile: the captured layer and host depth are whole
   } else {
     ctx.vk.vkCmdDispatchIndirect(cmd, s.tiles.buffer, tile_list);  // the tiles with entries (scan.comp)
   }
-  // No barrier: the split pass composites only the tiles the pass above skips (and its own partial layers).
-  bind(per_fragment ? Pass::fine_split_per_fragment : Pass::fine_split);
+  bind(split);
   ctx.vk.vkCmdDispatchIndirect(cmd, s.split_items.buffer, 0);
   ctx.time_end(cmd, timed, "render.fine");
   // The layer for the composite call's fragment shader; the counters (and captures) for the copies below.

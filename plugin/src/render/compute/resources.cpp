@@ -250,7 +250,7 @@ TvkResult ensure_buffers(TvkRenderer_T& r, uint32_t width, uint32_t height, uint
   // Split work items: enough for the entry capacity in shares of kSplit plus 1,024 (a tile's last share is partial).
   const uint64_t slots = std::min<uint64_t>(kSplitSlots, capacity / kSplit + 1024);
   if (res == TVK_SUCCESS)
-    res = grow(ctx, s.split_items, 8 * (2 + slots), storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, Memory::device,
+    res = grow(ctx, s.split_items, 8 * (4 + slots), storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, Memory::device,
                "hair compute split items");
   if (res == TVK_SUCCESS && s.split_slots < slots) {
     res = grow(ctx, s.partials, 8 * 64 * slots, storage, Memory::device, "hair compute partial layers");

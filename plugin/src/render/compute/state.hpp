@@ -37,10 +37,13 @@ static_assert(kSliceCapacity >= 128 && kSliceEntries <= kSliceCapacity, "fine.co
 constexpr uint32_t kReorderWindow = 4;
 // fine.comp: covering fragments a pixel still takes once opaque, so the window can put a nearer later one first.
 constexpr uint32_t kSettleFragments = 4;
-// Over-full tiles (raster_layout.glsl): more than kSplitAt entries are composited by ceil(count / kSplit)
+// Over-full tiles (raster_layout.glsl): more than kSplitAt entries (more than kSplitFewAt when at most kSplitFew
+// tiles of the call have that many) are composited by ceil(count / kSplit)
 // workgroups of the split pass, which holds kSplitCapacity entries in shared memory (one load for a share of
 // kSplit entries); at most kSplitSlots work items per call (a tile that does not fit stays whole).
 constexpr uint32_t kSplitAt = 8192;
+constexpr uint32_t kSplitFewAt = 2048;
+constexpr uint32_t kSplitFew = 512;
 constexpr uint32_t kSplit = 1024;
 constexpr uint32_t kSplitCapacity = 1024;
 constexpr uint32_t kSplitSlots = 65535;
