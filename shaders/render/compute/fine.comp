@@ -67,19 +67,22 @@ const uint kAhead = 8u;  // entries a thread loads before using them (their late
 const uint kChunk = 64u;  // segments composited between two barriers (a multiple of 64; 128 measured slower)
 
 // The loaded entries: [0, kCap) their keys, [kCap, 2 kCap) their segments, [2 kCap, 3 kCap) their tie keys
-// (tie_of, computed once per load), [3 kCap, 4 kCap) the entries in composite order (rank -> entry). Before the
-// tie keys and the order are written, [2 kCap, 2 kCap + kBins) holds per bin its count (the histogram), then during
-// a load the cursor of its entries (kCap >= kBins / 2).
-shared uint s_buf[4u * kCap];
-const uint kSeg = kCap, kTie = 2u * kCap, kHist = 2u * kCap, kOrder = 3u * kCap;
+// (tie_of, computed once per load); once ranked, [0, kCap) their segments in composite order (the keys are no
+// longer needed). Before the tie keys are written, [2 kCap, 2 kCap + kBins) holds per bin its count (the
+// histogram), then during a load the cursor of its entries (kCap >= kBins). Shared memory is this pass's
+// occupancy (about 56 KB an SM on an NVIDIA H100, docs/rendering.md): each array here is counted.
+shared uint s_buf[3u * kCap];
+const uint kSeg = kCap, kTie = 2u * kCap, kHist = 2u * kCap;
+const uint kMaxRanks = 16u;  // entries a thread ranks per load: kCap / 64 (kCap <= 1024)
 shared uint s_pre[kBins + 1u];  // exclusive prefix sums of the counts (s_pre[kBins]: the tile's entries)
 shared uint s_sub[64];          // per subgroup: its sum (the scan of the histogram)
 shared uint s_min[3];           // the parallel searches' results, three in rotation (see next_search)
 const uint kWords = kChunk / 32u;  // mask words per pixel
 shared uint s_pix[kWords * 64u];  // per pixel [kWords pixel + h]: bit j of chunk segment 32 h + j that may cover it
-shared vec4 s_p0[kChunk], s_p1[kChunk];  // the chunk of segments being composited, in order
+// The chunk of segments being composited, in order: (a.xy, b.xy - a.xy), (a.z, b.z - a.z, width at a with the
+// sign bit set on a strand's last segment, width change).
+shared vec4 s_p0[kChunk], s_p1[kChunk];
 shared uvec4 s_c[kChunk];  // colour at the start and its change along the segment, half floats
-shared vec2 s_p2[kChunk];
 const uint kShadeSlots = kPerFragment != 0u ? kChunk : 1u;
 shared vec4 s_pa[kShadeSlots], s_ta[kShadeSlots], s_dp[kShadeSlots], s_dt[kShadeSlots];  // per fragment only
 shared uint s_group[kShadeSlots];
@@ -178,8 +181,8 @@ void put(uint slot, uint seg, vec4 a, vec4 ca, vec4 b, vec4 cb, vec2 origin, uin
   const vec2 d = b.xy - a.xy;
   const vec4 dcol = cb - ca;
   s_p0[slot] = vec4(a.xy, d);
-  s_p1[slot] = vec4(a.z, b.z - a.z, a.w, b.w - a.w);
-  s_p2[slot] = vec2(1.0 / dot(d, d), si + 2u >= n ? 1.0 : 0.0);
+  const float wa = si + 2u >= n ? uintBitsToFloat(floatBitsToUint(a.w) | 0x80000000u) : a.w;  // last: -width
+  s_p1[slot] = vec4(a.z, b.z - a.z, wa, b.w - a.w);
   s_c[slot] = uvec4(packHalf2x16(ca.rg), packHalf2x16(ca.ba), packHalf2x16(dcol.rg), packHalf2x16(dcol.ba));
   if (kPerFragment != 0u) {  // point (xyz, along) and tangent (xyz, tint) at a, and their change to b
     const uint at = 2u * (pc.params.y * n + va);
@@ -396,6 +399,7 @@ void main() {
       s_buf[kTie + i] = tie_of(a, b);
     }
     barrier();
+    uint ranks[kMaxRanks];
     for (uint i = lid; i < m; i += 64u) {
       const uint ki = s_buf[i], ti = s_buf[kTie + i];
       uint lo = 0u, hi = m;
@@ -412,10 +416,18 @@ void main() {
       if (one) {
         put(r, seg, a, ca, b, cb, origin, n);
       } else {
-        s_buf[kOrder + r] = i;
+        ranks[(i - lid) / 64u] = r;
       }
     }
     barrier();
+    if (!one) {  // the segments in composite order, over the keys every rank above has read
+      for (uint q = 0u; q < kCap / 64u; ++q) {
+        const uint i = lid + 64u * q;
+        const uint s = i < m ? s_buf[kSeg + i] : 0u;
+        if (i < m) s_buf[ranks[q]] = s;
+      }
+      barrier();
+    }
     {
       // Front-to-back compositing, kChunk segments at a time: each segment in shared memory (in the form the
       // per-pixel test needs) has marked the pixels it may cover; every pixel runs the exact test on its marked
@@ -423,7 +435,7 @@ void main() {
       for (uint base = 0u; base < m; base += kChunk) {
         if (!one) {
           for (uint slot = lid; slot < kChunk && base + slot < m; slot += 64u) {
-            seg = s_buf[kSeg + s_buf[kOrder + base + slot]];
+            seg = s_buf[base + slot];
             const uint va = seg / (n - 1u) * n + seg % (n - 1u);
             put(slot, seg, verts[2u * va], verts[2u * va + 1u], verts[2u * va + 2u], verts[2u * va + 3u], origin, n);
           }
@@ -436,11 +448,11 @@ void main() {
             bits &= bits - 1u;
             const vec4 p0 = s_p0[j];
             const vec2 rel = centre - p0.xy;
-            const vec2 p2 = s_p2[j];
-            const float t = dot(rel, p0.zw) * p2.x;
-            if (t < 0.0 || t > 1.0 || (t == 1.0 && p2.y == 0.0)) continue;
             const vec4 p1 = s_p1[j];
-            const float cov = coverage(length(rel - t * p0.zw), p1.z + t * p1.w);
+            const float t = dot(rel, p0.zw) * (1.0 / dot(p0.zw, p0.zw));
+            const bool last = (floatBitsToUint(p1.z) & 0x80000000u) != 0u;  // the strand's tip belongs to it
+            if (t < 0.0 || t > 1.0 || (t == 1.0 && !last)) continue;
+            const float cov = coverage(length(rel - t * p0.zw), abs(p1.z) + t * p1.w);
             if (cov <= 0.0) continue;
             const float z = p1.x + t * p1.y;
             if (z > zhost) continue;  // behind the host's opaque surface

@@ -33,7 +33,8 @@ constexpr uint32_t kTile = 8;
 // the per-pixel reorder window (kReorder, 0 off). 512 entries per load, or 256 ranked whole, measured slower.
 constexpr uint32_t kSliceCapacity = 256;
 constexpr uint32_t kSliceEntries = 64;
-static_assert(kSliceCapacity >= 128 && kSliceEntries <= kSliceCapacity, "fine.comp: kCap >= kBins / 2, kSlice <= kCap");
+static_assert(kSliceCapacity >= 256 && kSliceCapacity <= 1024 && kSliceEntries <= kSliceCapacity,
+              "fine.comp: kBins <= kCap <= 64 * kMaxRanks, kSlice <= kCap");
 constexpr uint32_t kReorderWindow = 4;
 // fine.comp: covering fragments a pixel still takes once opaque, so the window can put a nearer later one first.
 constexpr uint32_t kSettleFragments = 4;
@@ -46,6 +47,7 @@ constexpr uint32_t kSplitFewAt = 2048;
 constexpr uint32_t kSplitFew = 512;
 constexpr uint32_t kSplit = 1024;
 constexpr uint32_t kSplitCapacity = 1024;
+static_assert(kSplitCapacity >= 256 && kSplitCapacity <= 1024, "fine.comp: kBins <= kCap <= 64 * kMaxRanks");
 constexpr uint32_t kSplitSlots = 65535;
 constexpr uint32_t kCounterCount = 8;
 constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster_layout.glsl)
