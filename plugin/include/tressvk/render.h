@@ -210,6 +210,9 @@ TVK_API TvkResult tressvk_cmd_draw_hair(TvkRenderer renderer, VkCommandBuffer co
 #define TVK_RASTER_REVERSE_STRANDS 0x2u  /* submit the strands in reversed order (order-independence test) */
 #define TVK_RASTER_SHADE_PER_FRAGMENT 0x4u /* Kajiya-Kay per fragment instead of per vertex (slower, see
                                             docs/rendering.md; the default shades per vertex) */
+#define TVK_RASTER_SPLIT_AS_DENSE 0x8u   /* split tiles across workgroups as for a dense groom (only those over 8,192
+                                            entries, after the fine pass) even where few are heavy (tests: that
+                                            path in a small view; docs/rendering.md, "The fine pass's timeline") */
 
 typedef struct TvkRasterInfo {
   size_t struct_size;                 /* sizeof(TvkRasterInfo) */

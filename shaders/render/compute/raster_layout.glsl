@@ -71,6 +71,7 @@ const uint kFlagCapture = 1u;
 const uint kFlagReverse = 2u;
 const uint kFlagShadowed = 4u;   // a shadow map was given: build and read the deep opacity map
 const uint kFlagPerFragment = 8u; // shade per fragment in fine.comp (TVK_RASTER_SHADE_PER_FRAGMENT)
+const uint kFlagSplitDense = 16u; // scan.comp: split as for a dense groom however few tiles are heavy (tests)
 const uint kDomSize = 512u;
 const uint kDomLayers = 4u;
 const float kDomUnit = 1024.0;

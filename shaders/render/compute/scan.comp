@@ -117,7 +117,7 @@ void main() {
   // shares of a nearly opaque tile composite what its nearer shares hide (measured on an NVIDIA H100: the head
   // sample 0.96 -> 0.78 ms, 100,000 x 32 strands with 3,251 such tiles 3.69 -> 4.91 ms).
   const uint over_few = tiles[tile_list_at(tiles_count) + 4u];
-  const bool few = over_few > 0u && over_few <= kSplitFew;
+  const bool few = over_few > 0u && over_few <= kSplitFew && (pc.params.z & kFlagSplitDense) == 0u;
   if (few) {
     uint next_slot = 0u;
     for (uint b = 0u; b < blocks; ++b) {

@@ -101,7 +101,8 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   Push push{{width, height, tiles_x, tiles_y},
             {s.entry_capacity, drawn,
              (info->flags & (TVK_RASTER_CAPTURE | TVK_RASTER_REVERSE_STRANDS)) | (shadowed ? kFlagShadowed : 0u) |
-                 (per_fragment ? kFlagPerFragment : 0u),
+                 (per_fragment ? kFlagPerFragment : 0u) |
+                 ((info->flags & TVK_RASTER_SPLIT_AS_DENSE) != 0 ? kFlagSplitDense : 0u),
              static_cast<uint32_t>(segments)},
             {s.split_slots, 0, 0, 0}};
 

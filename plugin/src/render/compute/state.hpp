@@ -54,6 +54,7 @@ constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster
 constexpr uint32_t kDomLayers = 4;
 constexpr uint32_t kFlagShadowed = 4;
 constexpr uint32_t kFlagPerFragment = 8;  // raster_layout.glsl: TVK_RASTER_SHADE_PER_FRAGMENT
+constexpr uint32_t kFlagSplitDense = 16;  // raster_layout.glsl: TVK_RASTER_SPLIT_AS_DENSE
 
 struct State {
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
