@@ -2,8 +2,9 @@
 // dependent steps of passes that run side by side:
 //   [deep opacity map: nearest hair | tile host depth (+ zeroed counts) | vertex projection]
 //   -> [deep opacity map: fibre layers | count] -> [vertex shading | scan] -> scan top -> scatter (+ the deep
-//   opacity map cleared for the next call) -> [fine split (over-full tiles in shares, indirect) | fine (sort +
-//   composite per tile)]
+//   opacity map cleared for the next call) -> [fine split of a few heavy tiles | fine (sort + composite per tile,
+//   the heaviest tiles first) | fine split of a dense groom's over-full tiles] (the split dispatches are indirect,
+//   one of them empty)
 // with a compute-to-compute memory barrier between steps (docs/rendering.md, "The compute path").
 #include "state.hpp"
 

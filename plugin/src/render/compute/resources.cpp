@@ -1,4 +1,4 @@
-// The compute rasterizer's Vulkan objects: descriptor set and pipeline layouts, the six compute pipelines, the
+// The compute rasterizer's Vulkan objects: descriptor set and pipeline layouts, its compute pipelines, the
 // nearest sampler, per-slot descriptor pools, and buffers grown (never shrunk, never reallocated per frame) to
 // the largest view and groom seen.
 #include "state.hpp"
