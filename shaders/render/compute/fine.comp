@@ -70,7 +70,7 @@ const uint kChunk = 64u;  // segments composited between two barriers (a multipl
 // (tie_of, computed once per load); once ranked, [0, kCap) their segments in composite order (the keys are no
 // longer needed). Before the tie keys are written, [2 kCap, 2 kCap + kBins) holds per bin its count (the
 // histogram), then during a load the cursor of its entries (kCap >= kBins). Shared memory is this pass's
-// occupancy (about 56 KB an SM on an NVIDIA H100, docs/rendering.md): each array here is counted.
+// occupancy (52-58 KB an SM on an NVIDIA H100, docs/rendering.md): each array here is counted.
 shared uint s_buf[3u * kCap];
 const uint kSeg = kCap, kTie = 2u * kCap, kHist = 2u * kCap;
 const uint kMaxRanks = 16u;  // entries a thread ranks per load: kCap / 64 (kCap <= 1024)

@@ -25,6 +25,7 @@ shared uvec2 s_sub[1024];  // per subgroup: its sums, then the sums of the subgr
 shared uvec2 s_total;      // the workgroup's totals
 shared uint s_used;        // split slots used
 shared uint s_hist[kBuckets];  // this block's tiles with entries per weight bucket
+shared uint s_over;            // this block's tiles over kSplitFewAt entries
 
 // Work items of a tile of v entries split above `at` entries.
 uint items_of(uint v, uint at) { return v > at ? (v + kSplit - 1u) / kSplit : 0u; }
@@ -68,26 +69,24 @@ void main() {
       tiles[4u * tiles_count + t] = kNotSplit;  // the top pass marks the split tiles
       tiles[5u * tiles_count + t] = 0u;         // items of the tile finished (fine.comp)
     }
-    // The tiles over kSplitFewAt entries: counted for the call (the top pass splits them if they are few) and
-    // flagged per block (the blocks it then walks).
-    const bool few_candidate = t < tiles_count && v > kSplitFewAt;
-    const uint over_count = subgroupAdd(few_candidate ? 1u : 0u);
-    if (subgroupElect() && over_count > 0u) atomicAdd(tiles[tile_list_at(tiles_count) + 4u], over_count);
-    if (i == 0u) s_used = 0u;
-    barrier();
-    if (subgroupElect() && over_count > 0u) s_used = 1u;
-    barrier();
-    if (i == 0u) {
-      tiles[top + 2u * b] = s_total.x;  // read after workgroup_exclusive's last barrier: s_total is this call's
-      tiles[top + 2u * b + 1u] = s_total.y | (s_used != 0u ? kFewFlag : 0u);
-    }
     // The tiles with entries, for the fine pass, counted per weight bucket (the top pass turns the counts into
-    // the buckets' places in the list, the scatter pass lists the tiles).
+    // the buckets' places in the list, the scatter pass lists the tiles); and the tiles over kSplitFewAt entries,
+    // counted for the call (the top pass splits them if they are few) and flagged per block (the blocks it then
+    // walks).
     if (i < kBuckets) s_hist[i] = 0u;
+    if (i == 0u) s_over = 0u;
     barrier();
     if (t < tiles_count && v > 0u) atomicAdd(s_hist[weight_bucket(v)], 1u);
+    const uint over = subgroupAdd(t < tiles_count && v > kSplitFewAt ? 1u : 0u);
+    if (subgroupElect() && over > 0u) atomicAdd(s_over, over);
     barrier();
     if (i < kBuckets && s_hist[i] > 0u) atomicAdd(tiles[tile_list_buckets_at(tiles_count) + i], s_hist[i]);
+    if (i == 0u) {
+      // s_total is workgroup_exclusive's above: nothing in this pass has called it since.
+      tiles[top + 2u * b] = s_total.x;
+      tiles[top + 2u * b + 1u] = s_total.y | (s_over > 0u ? kFewFlag : 0u);
+      if (s_over > 0u) atomicAdd(tiles[tile_list_at(tiles_count) + 4u], s_over);
+    }
     return;
   }
   if (i == 0u) s_used = 0u;

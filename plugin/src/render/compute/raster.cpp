@@ -128,7 +128,7 @@ TvkResult record(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkRasterInfo* inf
   // call; shaded per fragment the fine pass reads it after that, so the next call clears it with fills instead.
   const bool clean_dom = shadowed && !per_fragment;
   if (shadowed) s.dom_dirty = !clean_dom;
-  // The fine pass's list of tiles with entries and its dispatch size (scan.comp, packed by the scatter pass).
+  // The fine pass's list of tiles with entries and its dispatch size (scan.comp, listed by the scatter pass).
   const VkDeviceSize tile_list = 4 * (6 * VkDeviceSize{tile_count} + 2 * ((tile_count + 1023) / 1024));
   const auto next = [&](const char* finished) {  // closes the timed step `finished`, opens the next
     ctx.time_end(cmd, timed, finished);
