@@ -13,19 +13,20 @@ struct VspStrand {
   vec4 swing;       // the root's skinning rotation of this step
   vec4 swing_before;  // and of the step before (skin_delta_before)
 };
-VspStrand vsp_strand(uint g) {
+// From the root vertices' state (vertex 0 and vertex 1: x now, y a step back, z two steps back), however the caller
+// holds them.
+VspStrand vsp_strand_from(uint g, vec4 x0, vec4 x1, vec3 y0, vec3 y1, vec3 z0, vec3 z1) {
   VspStrand s;
   GroupParams gp = guide_params(g);
-  uint b = strand_base(g);
   // VSP off for this group (the pass runs for another group). Any pin count: the root's rigid motion needs a pinned
   // root, and the acceleration is measured at the last pinned root vertex (vertex 1 when two or more are pinned).
   // Only pinned vertices are read, which nothing writes. (Chosen by value, not by index, so that the fused kernel's
   // private arrays are indexed by constants.)
-  s.on = gp.vsp_coefficient > 0.0 && !(TVK_POS(b).w > 0.0);
-  bool one_pinned = TVK_POS(b + TVK_BLOCK).w > 0.0;
-  vec3 p0 = TVK_POS(b).xyz, p1 = one_pinned ? p0 : TVK_POS(b + TVK_BLOCK).xyz;
-  vec3 q0 = TVK_PREV(b).xyz, q1 = one_pinned ? q0 : TVK_PREV(b + TVK_BLOCK).xyz;
-  vec3 r0 = TVK_PREVPREV(b).xyz, r1 = one_pinned ? r0 : TVK_PREVPREV(b + TVK_BLOCK).xyz;
+  s.on = gp.vsp_coefficient > 0.0 && !(x0.w > 0.0);
+  bool one_pinned = x1.w > 0.0;
+  vec3 p0 = x0.xyz, p1 = one_pinned ? p0 : x1.xyz;
+  vec3 q0 = y0, q1 = one_pinned ? q0 : y1;
+  vec3 r0 = z0, r1 = one_pinned ? r0 : z1;
 
   // Above the acceleration threshold the whole strand follows the root rigidly; the coefficient ramps up over
   // [0.75, 1] x threshold so that it is a continuous function of the state.
@@ -42,6 +43,11 @@ VspStrand vsp_strand(uint g) {
   s.swing = skin_delta(g);
   s.swing_before = skin_delta_before(g);
   return s;
+}
+VspStrand vsp_strand(uint g) {
+  uint b = strand_base(g);
+  return vsp_strand_from(g, TVK_POS(b), TVK_POS(b + TVK_BLOCK), TVK_PREV(b).xyz, TVK_PREV(b + TVK_BLOCK).xyz,
+                         TVK_PREVPREV(b).xyz, TVK_PREVPREV(b + TVK_BLOCK).xyz);
 }
 
 void vsp_vertex_of(VspStrand s, uint i, uint v) {

@@ -9,6 +9,7 @@
 
 #include <tressvk/baker/bake.hpp>
 #include <tressvk/baker/import.hpp>
+#include <tressvk/baker/procedural.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>
 
@@ -138,6 +139,23 @@ TEST_CASE("GPU matches the reference in every scene with every built-in groom", 
   const SceneResult r = run_scene(hair, scene, 75);
   INFO(groom << " / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max
               << ", tangent error " << r.tangent_error_max);
+  check_scene(r);
+}
+
+// Strands of 4 and 8 vertices: the smallest N the baker writes, and on the compliant model (TRESSVK_SIM_MODEL=compliant,
+// a ctest entry of its own) the N whose strands fit an 8-lane subgroup, so that lavapipe runs the lane kernel's
+// subgroup variant (sim/fused.hpp) as well as its shared-memory one (TRESSVK_SIM_LANES=shared).
+TEST_CASE("strands of 4 and 8 vertices match the reference in every scene", "[plugin][simulation]") {
+  const uint32_t n = GENERATE(4u, 8u);
+  const std::string scene = GENERATE("settle", "shake", "run", "teleport", "wind", "hitch", "far");
+  baker::BuiltinGroomOptions options;
+  options.guide_count = 24;
+  options.follow_per_guide = 1;
+  options.vertices_per_strand = n;
+  const asset::HairAsset hair = baker::make_builtin_groom("curly", options);
+  const SceneResult r = run_scene(hair, scene, scene == "teleport" ? 62 : 30);  // the teleport is at frame 60
+  INFO(n << " vertices / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max
+         << ", tangent error " << r.tangent_error_max << ", passes " << r.passes.front());
   check_scene(r);
 }
 

@@ -19,6 +19,10 @@ struct Context {
   VolkDeviceTable vk{};                       // this context's own device-level function table
   PFN_vkGetPhysicalDeviceProperties get_physical_device_properties = nullptr;
   VkPhysicalDeviceProperties device_properties{};
+  // The device's subgroup size (0 when unknown) and whether compute shaders may shuffle and vote in subgroups: the
+  // compliant model's kernel keeps a strand in one subgroup where it fits (sim/fused.hpp).
+  uint32_t subgroup_size = 0;
+  bool subgroup_shuffle_compute = false;
   VmaAllocator allocator = VK_NULL_HANDLE;    // private to TressVK, on the host's device
   uint32_t frames_in_flight = 2;
   std::string last_error;

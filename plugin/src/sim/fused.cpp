@@ -1,5 +1,6 @@
 #include "sim/fused.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 
@@ -26,7 +27,18 @@ const PassInfo kFrameShared = {PassId::kFrame, "frame", k_spv_frame_shared_comp,
 const PassInfo kFrameLanes = {PassId::kFrame, "frame", k_spv_frame_lanes_comp, sizeof(k_spv_frame_lanes_comp),
                               Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites,
                               kFrameFeatures, true};
+const PassInfo kFrameLanesSubgroup = {PassId::kFrame, "frame", k_spv_frame_lanes_subgroup_comp,
+                                      sizeof(k_spv_frame_lanes_subgroup_comp), Granularity::kGuide,
+                                      Frequency::kPerFrame, all_bindings(), kFrameWrites, kFrameFeatures, true};
 constexpr uint32_t kLanesVariantBit = 1u << 14;
+// Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
+constexpr uint32_t kLanesSubgroupWorkgroup = 64;
+
+uint32_t lanes_for(uint32_t vertices_per_strand, uint32_t at_least) {
+  uint32_t lanes = at_least;
+  while (lanes < vertices_per_strand) lanes *= 2;
+  return lanes;
+}
 // Not a shader feature: keeps the two variants' pipelines apart in the context's pipeline cache (FEATURES ignores it).
 constexpr uint32_t kSharedVariantBit = 1u << 15;  // below bit 16: the cache key puts capsules at bit 48
 
@@ -66,20 +78,42 @@ PassUse frame_pass_use(const SceneTerms& terms, bool shared) {
 
 uint32_t frame_dispatch_groups(uint32_t guide_count) { return (guide_count + kStrandBlock - 1) / kStrandBlock; }
 
-PassUse frame_lanes_pass_use(const SceneTerms& terms) {
+LanesBackend lanes_backend_from_environment() {
+  static const LanesBackend backend = [] {
+    const char* v = std::getenv("TRESSVK_SIM_LANES");
+    if (v && std::strcmp(v, "shared") == 0) return LanesBackend::kShared;
+    return LanesBackend::kAuto;
+  }();
+  return backend;
+}
+
+bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bool shuffle_compute) {
+  return shuffle_compute && subgroup_size >= 4 && (subgroup_size & (subgroup_size - 1)) == 0 &&
+         lanes_for(vertices_per_strand, 1) <= subgroup_size;
+}
+
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
   PassUse use = frame_pass_use(terms, false);
-  use.info = &kFrameLanes;
+  use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
   use.features |= kLanesVariantBit;
-  use.name = "frame(lanes)" + use.name.substr(5);
+  if (subgroup) use.features |= kSharedVariantBit;  // keeps the two lane variants' pipelines apart
+  use.name = (subgroup ? "frame(lanes,subgroup)" : "frame(lanes)") + use.name.substr(5);
   return use;
 }
 
-bool is_frame_lanes(const PassInfo* info) { return info == &kFrameLanes; }
+bool is_frame_lanes(const PassInfo* info) { return info == &kFrameLanes || info == &kFrameLanesSubgroup; }
 
-uint32_t frame_lanes_workgroup(uint32_t vertices_per_strand) {
-  uint32_t lanes = 32;
-  while (lanes < vertices_per_strand) lanes *= 2;
-  return lanes;
+uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size) {
+  if (info == &kFrameLanesSubgroup) return std::max(subgroup_size, kLanesSubgroupWorkgroup);
+  return lanes_for(vertices_per_strand, 32);
+}
+
+uint32_t frame_lanes_groups(const PassInfo* info, uint32_t guide_count, uint32_t vertices_per_strand,
+                            uint32_t subgroup_size) {
+  if (info != &kFrameLanesSubgroup) return guide_count;
+  const uint32_t per_group = frame_lanes_workgroup(info, vertices_per_strand, subgroup_size) /
+                             lanes_for(vertices_per_strand, 1);
+  return (guide_count + per_group - 1) / per_group;
 }
 
 }  // namespace tressvk::sim

@@ -30,11 +30,21 @@ PassUse frame_pass_use(const SceneTerms& terms, bool shared);
 // Workgroups of the frame pass: one per strand block of 32 guides.
 uint32_t frame_dispatch_groups(uint32_t guide_count);
 
-// The compliant model's lane-parallel frame kernel (frame_lanes.comp, TRESSVK_SIM_MODEL=compliant): one workgroup
-// per guide, one lane per vertex. It records as the frame pass (PassId::kFrame) with its own pipeline.
-PassUse frame_lanes_pass_use(const SceneTerms& terms);
+// The compliant model's lane-parallel frame kernel (frame_lanes.glsl, TRESSVK_SIM_MODEL=compliant), one lane per
+// vertex, in two variants: subgroup (a strand is a cluster of lanes of one subgroup, values move by shuffles;
+// frame_lanes_subgroup.comp) where lanes_fit_subgroup, else shared (one strand per workgroup, values through shared
+// memory; frame_lanes.comp). TRESSVK_SIM_LANES=shared (read once per process) keeps the shared variant everywhere.
+// It records as the frame pass (PassId::kFrame) with its own pipeline.
+enum class LanesBackend { kAuto, kShared };
+LanesBackend lanes_backend_from_environment();
+// The power of two >= N fits the subgroup, and compute shaders may shuffle and vote.
+bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bool shuffle_compute);
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup);
 bool is_frame_lanes(const PassInfo* info);
-// Its workgroup size for N vertices per strand: the power of two >= N, at least 32 (WORKGROUP_SIZE).
-uint32_t frame_lanes_workgroup(uint32_t vertices_per_strand);
+// Its workgroup size (WORKGROUP_SIZE): shared, the power of two >= N, at least 32; subgroup, whole subgroups, at
+// least 64 invocations. And its workgroups for G guides.
+uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size);
+uint32_t frame_lanes_groups(const PassInfo* info, uint32_t guide_count, uint32_t vertices_per_strand,
+                            uint32_t subgroup_size);
 
 }  // namespace tressvk::sim

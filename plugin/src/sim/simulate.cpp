@@ -84,7 +84,8 @@ TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k,
                               "vkCreateShaderModule");
       r != TVK_SUCCESS)
     return r;
-  const uint32_t wg = sim::is_frame_lanes(use.info) ? sim::frame_lanes_workgroup(n) : ctx.workgroup_size;
+  const uint32_t wg = sim::is_frame_lanes(use.info) ? sim::frame_lanes_workgroup(use.info, n, ctx.subgroup_size)
+                                                     : ctx.workgroup_size;
   const std::array<uint32_t, 5> values = {wg, n, k, use.features, use.capsule_count};
   std::array<VkSpecializationMapEntry, 5> entries{};
   for (uint32_t i = 0; i < 5; ++i) entries[i] = {i, i * 4, 4};
@@ -156,7 +157,11 @@ struct InstanceWork {
 // The passes a frame of this instance records on the process's simulation path (TRESSVK_SIM_PATH): the fused frame
 // kernel (sim/fused.hpp; the shared-memory variant only where the strand block fits), or one pass per dispatch.
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
-  if (model::compliant_model_from_environment()) return {sim::frame_lanes_pass_use(terms)};
+  if (model::compliant_model_from_environment())
+    return {sim::frame_lanes_pass_use(
+        terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
+                   sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size,
+                                           ctx.subgroup_shuffle_compute))};
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
   const bool shared = path == sim::SimPath::kFusedShared &&
@@ -340,7 +345,9 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
       const uint32_t s = fused ? 0 : per_frame ? w->steps - 1 : step;
       const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, 0, w->steps, w->skin_stride};
       ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-      const uint32_t groups = sim::is_frame_lanes(u->info) ? rest.guide_count
+      const uint32_t groups = sim::is_frame_lanes(u->info)
+                                  ? sim::frame_lanes_groups(u->info, rest.guide_count, rest.vertices_per_strand,
+                                                            ctx.subgroup_size)
                               : fused                       ? sim::frame_dispatch_groups(rest.guide_count)
                                     : sim::dispatch_groups(u->info->granularity, rest.guide_count,
                                                            rest.vertices_per_strand, rest.follow_per_guide,
