@@ -528,7 +528,10 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, vec3 anch
 void main() {
 #ifdef TVK_LANES_SUBGROUP
   // Strands are clusters of LANES invocations of a subgroup; the host makes WORKGROUP_SIZE a multiple of the
-  // subgroup size and the subgroup size a multiple of LANES.
+  // subgroup size and the subgroup size a multiple of LANES, so that the subgroups are full (Vulkan would allow
+  // partial ones without VK_PIPELINE_SHADER_STAGE_CREATE_REQUIRE_FULL_SUBGROUPS_BIT, which needs a device feature the
+  // host may not have enabled; no implementation we know launches them for such a workgroup) and this numbering
+  // covers every strand of the workgroup once.
   uint v = gl_SubgroupInvocationID & (LANES - 1u);
   tvk_lane_base = gl_SubgroupInvocationID - v;
   uint g = gl_WorkGroupID.x * (WORKGROUP_SIZE / LANES) + (gl_SubgroupID * gl_SubgroupSize + tvk_lane_base) / LANES;
