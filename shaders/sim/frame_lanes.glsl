@@ -44,7 +44,7 @@ const uint kLanesC = kLanesB | (kLanesB >> 4u);
 vec4 L_pos;
 vec4 L_prev;
 vec4 L_prevprev;
-vec4 L_anchor;  // written by lane 0's integration
+vec4 L_anchor;  // written by lane 0's integration; every lane's copy of it where the collisions need it
 uint tvk_step;
 uint tvk_skin_base;
 #define TVK_POS(i) L_pos
@@ -56,7 +56,7 @@ uint tvk_skin_base;
 
 #include "sim/integrate.glsl"
 #include "sim/vsp.glsl"
-#include "sim/length.glsl"  // finite3 and constraint_direction (its per-strand walks are not called here)
+#include "sim/length.glsl"  // finite3, constraint_direction, collide_vertex (its per-strand walks are not called here)
 #include "sim/follow.glsl"
 
 const float kCalibrationSegments = 31.0;
@@ -377,7 +377,7 @@ void transverse_lanes(uint v, LaneRest lr, vec3 move, float lam) {
   if (vert && L_pos.w > 0.0) L_pos = vec4(L_pos.xyz + delta, L_pos.w);
 }
 
-void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, vec3 anchor_now, bool write_tangents) {
+void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool write_tangents) {
   bool vert = v < N;
 
   if (TVK_HAS(TVK_FEATURE_WIND)) {
@@ -401,45 +401,8 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, vec3 anch
     }
   }
 
-  if (TVK_HAS(TVK_FEATURE_COLLISION) && vert && L_pos.w > 0.0) {
-    vec3 a = anchor_now;
-    vec3 x = L_pos.xyz;
-    vec3 y = L_prev.xyz;
-    bool hit = false;
-    for (uint c = 0u; c < CAPSULE_COUNT; ++c) {
-      vec4 c0 = step_params[TVK_STEP].capsule[2u * c];
-      vec4 c1 = step_params[TVK_STEP].capsule[2u * c + 1u];
-      c0.xyz -= a;
-      c1.xyz -= a;
-      vec3 m0 = step_params[TVK_STEP].capsule_move[2u * c].xyz;
-      vec3 m1 = step_params[TVK_STEP].capsule_move[2u * c + 1u].xyz;
-      vec3 axis = c1.xyz - c0.xyz;
-      float aa = dot(axis, axis);
-      float t = aa > 0.0 ? clamp(dot(x - c0.xyz, axis) / aa, 0.0, 1.0) : 0.0;
-      vec3 centre = c0.xyz + t * axis;
-      float radius = mix(c0.w, c1.w, t);
-      vec3 d = x - centre;
-      float dist = length(d);
-      if (!(dist < radius)) continue;
-      vec3 nrm;
-      if (dist > kDirectionEps * radius) {
-        nrm = d / dist;
-      } else {
-        vec3 back = y - centre;
-        float bl = length(back);
-        nrm = bl > kDirectionEps * radius ? back / bl : vec3(0, 1, 0);
-      }
-      float depth = radius - dist;
-      x = centre + radius * nrm;
-      float vn = dot((x - y) - (m0 + t * (m1 - m0)), nrm);
-      if (vn < 0.0) y += min(depth / (kContactBand * radius), 1.0) * vn * nrm;
-      hit = true;
-    }
-    if (hit) {
-      L_pos = vec4(x, L_pos.w);
-      L_prev = vec4(y, L_pos.w);
-    }
-  }
+  // Every lane holds the anchor here (main), as collide_vertex reads it.
+  if (TVK_HAS(TVK_FEATURE_COLLISION) && vert) collide_vertex(g, b, v);
 
   vec3 move = vec3(0.0);
   float lam = 0.0;
@@ -563,17 +526,16 @@ void main() {
     vec3 y0 = lanes_get1(0u).xyz, y1 = lanes_get1(1u).xyz;
     vec3 z0 = lanes_get2(0u).xyz, z1 = lanes_get2(1u).xyz;
     lanes_done();
-    vec3 anchor_now = vec3(0.0);
     if (TVK_HAS(TVK_FEATURE_COLLISION)) {
       lanes_put(v, L_anchor, vec4(0.0), vec4(0.0));
-      anchor_now = lanes_get0(0u).xyz;
+      L_anchor = lanes_get0(0u);
       lanes_done();
     }
     if (TVK_HAS(TVK_FEATURE_VSP)) {
       if (vert && v >= 1u && L_pos.w > 0.0) vsp_vertex_of(vsp_strand_from(g, x0, x1, y0, y1, z0, z1), i, v);
     }
     if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_lanes(g, v, lr, gp);
-    length_lanes(g, b, v, lr, gp, anchor_now, s + 1u == pc.step_count);
+    length_lanes(g, b, v, lr, gp, s + 1u == pc.step_count);
   }
   if (vert) {
     pos[i] = L_pos;
