@@ -300,7 +300,7 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
 // One Newton step of every segment's length constraint (the reference's solve_lengths on the compliant model):
 // lane v holds segment v (v < N - 1) and vertex v. move and lam accumulate the step's move (vertex) and multiplier
 // (segment) for the transverse solve.
-void newton_lanes(uint v, LaneRest lr, float reach_floor, inout vec3 move, inout float lam) {
+void newton_lanes(uint v, LaneRest lr, float reach_floor, float weight, inout vec3 move, inout float lam) {
   bool seg = v + 1u < N;
   lanes_put(v, L_pos, L_prev, vec4(0.0));
   vec4 np = lanes_get0(lane_after(v));
@@ -328,14 +328,14 @@ void newton_lanes(uint v, LaneRest lr, float reach_floor, inout vec3 move, inout
   float ll = lanes_get0(lane_before(v)).x;
   lanes_done();
   vec3 dx = vec3(0.0);
-  float ratio = 1.0;
+  float ratio = weight;
   if (v < N && L_pos.w > 0.0) {
     if (seg) dx += l * gv;
     if (v > 0u) dx -= ll * gl;
     // Against segments of at least kCompliantReachFloorRel of the mean segment (see the reference's solve_lengths).
     float reach = 0.5 * min(v > 0u ? max(lr.len_left, reach_floor) : 3.0e38, seg ? max(rest, reach_floor) : 3.0e38);
     float len = length(dx);
-    if (len > reach) ratio = reach / len;
+    if (len * weight > reach) ratio = reach / len;
   }
   float scale = lanes_min(v, ratio);
   if (v < N && L_pos.w > 0.0) {
@@ -407,17 +407,19 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
   vec3 move = vec3(0.0);
   float lam = 0.0;
   float reach_floor = kCompliantReachFloorRel * strand_rest_length(g) / float(N - 1u);
-  newton_lanes(v, lr, reach_floor, move, lam);
+  newton_lanes(v, lr, reach_floor, 1.0, move, lam);
   transverse_lanes(v, lr, move, lam);
-  for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(v, lr, reach_floor, move, lam);
+  for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(v, lr, reach_floor, 1.0, move, lam);
   for (uint extra = 0u; extra < kCompliantExtraNewton; ++extra) {
     lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
     vec4 np = lanes_get0(lane_after(v));
     lanes_done();
     float off = 0.0;
     if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
-    if (!(lanes_max(v, off) > kCompliantStretchTol)) break;
-    newton_lanes(v, lr, reach_floor, move, lam);
+    // Weighted by how far over the tolerance the worst segment is, as the reference (continuous in the state).
+    float worst = lanes_max(v, off);
+    if (!(worst > kCompliantStretchTol)) break;
+    newton_lanes(v, lr, reach_floor, min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0), move, lam);
   }
 
   bool ok = true;

@@ -414,7 +414,7 @@ Vec3 constraint_direction(Vec3 d, Vec3 was, double rest) {
 }
 }  // namespace
 
-void Simulator::solve_lengths(size_t b) {
+void Simulator::solve_lengths(size_t b, double weight) {
   // One Newton step of C_v(x) = |x_{v+1} - x_v| - rest_v = 0 for every segment at once. The correction moves each free
   // vertex along the segments' directions midway between the start of the step and now (m_v; the implicit midpoint
   // rule, which dissipates nothing), by multipliers lambda from the tridiagonal system
@@ -479,7 +479,7 @@ void Simulator::solve_lengths(size_t b) {
   const double reach_floor = length_model_ == LengthModel::kCompliant
                                  ? kCompliantReachFloorRel * rest_.strand_length[b / n] / static_cast<double>(m)
                                  : 0.0;
-  double scale = 1.0;
+  double scale = weight;
   Vec3 m_prev{};
   for (uint32_t v = 0; v < n; ++v) {
     const Vec3 m_v = v < m ? mid_dir(v, grad(v)) : Vec3{};
@@ -654,6 +654,9 @@ void Simulator::length_and_collision(const Substep& st) {
       for (uint32_t it = 0; it < gp.length_iterations; ++it) solve_lengths(b);
       // Violent motion (a damped Newton step, a whipping tip): up to kCompliantExtraNewton more steps while any
       // segment is off its length by more than kCompliantStretchTol (a reduction over the strand's lanes on the GPU).
+      // Each is weighted by how far over the tolerance the worst segment is (0 at it, whole from twice it), so that
+      // the step is a continuous function of the state: as a hard switch, a float state just under the tolerance
+      // and its double twin just over it took different steps (1-frame differences of 3e-4 of the strand length).
       for (uint32_t extra = 0; extra < kCompliantExtraNewton; ++extra) {
         double worst = 0.0;
         for (uint32_t v = 0; v + 1 < n; ++v) {
@@ -662,7 +665,7 @@ void Simulator::length_and_collision(const Substep& st) {
           worst = std::max(worst, std::abs(length(pos_[b + v + 1] - pos_[b + v]) - rest) / rest);
         }
         if (!(worst > kCompliantStretchTol)) break;
-        solve_lengths(b);
+        solve_lengths(b, std::min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0));
       }
     } else if (length_model_ == LengthModel::kNewmark) {
       // LengthModel::kNewmark (opt-in, not yet the default: see simulator.hpp). Every strand alike:

@@ -115,8 +115,8 @@ class Simulator {
   std::vector<Vec3> pos_, prev_, prevprev_, tangent_;
   uint64_t nonfinite_resets_ = 0;
   // One Newton step of a strand's length constraints (solve_lengths, every strand): per segment, c' and d' (then
-  // lambda).
-  void solve_lengths(size_t strand_base);
+  // lambda). weight (0..1) scales the step (before its reach limit).
+  void solve_lengths(size_t strand_base, double weight = 1.0);
   // The implicit transverse correction after the Newton steps (see simulator.cpp).
   void implicit_transverse(size_t strand_base, double alpha);
   std::vector<double> seg_cp_, seg_dp_;
