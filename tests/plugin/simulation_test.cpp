@@ -117,6 +117,13 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
   return result;
 }
 
+// The Ratboy mohawk with its bones, baked with `options` (the test is skipped where the data is absent).
+asset::HairAsset baked_ratboy(const baker::BakeOptions& options) {
+  baker::RawGroom raw = baker::import_tfx(test::data_file("tressfx/ratboy/Ratboy_mohawk.tfx"));
+  baker::apply_tfxbone(raw, test::data_file("tressfx/ratboy/Ratboy_mohawk.tfxbone"));
+  return baker::bake(raw, options);
+}
+
 bool has_pass_containing(const std::vector<std::string>& passes, const std::string& what) {
   return std::any_of(passes.begin(), passes.end(), [&](const std::string& p) { return p.find(what) != std::string::npos; });
 }
@@ -160,12 +167,9 @@ TEST_CASE("strands of 4 and 8 vertices match the reference in every scene", "[pl
 }
 
 TEST_CASE("GPU matches the reference on the baked Ratboy mohawk with 2 follow hairs", "[plugin][simulation][data]") {
-  const std::filesystem::path tfx = test::data_file("tressfx/ratboy/Ratboy_mohawk.tfx");
-  baker::RawGroom raw = baker::import_tfx(tfx);
-  baker::apply_tfxbone(raw, test::data_file("tressfx/ratboy/Ratboy_mohawk.tfxbone"));
   baker::BakeOptions options;
   options.follow_per_guide = 2;
-  const asset::HairAsset hair = baker::bake(raw, options);
+  const asset::HairAsset hair = baked_ratboy(options);
   const std::string scene = GENERATE("settle", "shake", "run", "teleport", "wind", "hitch", "far");
   const SceneResult r = run_scene(hair, scene, scene == "teleport" ? 65 : 40);
   INFO("Ratboy / " << scene << ": step error " << r.step_error_max << ", stretch max " << r.stretch_max
@@ -179,12 +183,9 @@ TEST_CASE("GPU matches the reference on the baked Ratboy mohawk with 2 follow ha
 // entry, lavapipe runs it on the lane kernel's subgroup variant; on the default entry, follow-the-leader.
 TEST_CASE("Ratboy at 8 vertices and 60 Hz steps matches the reference through 200 frames of shake",
           "[plugin][simulation][data]") {
-  const std::filesystem::path tfx = test::data_file("tressfx/ratboy/Ratboy_mohawk.tfx");
-  baker::RawGroom raw = baker::import_tfx(tfx);
-  baker::apply_tfxbone(raw, test::data_file("tressfx/ratboy/Ratboy_mohawk.tfxbone"));
   baker::BakeOptions options;
   options.vertices_per_strand = 8;
-  const asset::HairAsset hair = baker::bake(raw, options);
+  const asset::HairAsset hair = baked_ratboy(options);
   TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
   settings.time.step_rate = 60.0f;
   const SceneResult r = run_scene(hair, "shake", 200, {}, settings);
@@ -563,11 +564,9 @@ TEST_CASE("pinned roots follow the head exactly", "[plugin][simulation]") {
 TEST_CASE("bone-skinned hair matches the reference (Ratboy, 105 bones rocking out of phase)", "[plugin][simulation][data]") {
   // Every bone turns about the head centre by up to 0.15 rad, each with its own phase, so strands blending several
   // bones see different motions: the skinning path (bone weights, per-bone VSP rotation) against the reference.
-  baker::RawGroom raw = baker::import_tfx(test::data_file("tressfx/ratboy/Ratboy_mohawk.tfx"));
-  baker::apply_tfxbone(raw, test::data_file("tressfx/ratboy/Ratboy_mohawk.tfxbone"));
   baker::BakeOptions options;
   options.follow_per_guide = 2;
-  const asset::HairAsset hair = baker::bake(raw, options);
+  const asset::HairAsset hair = baked_ratboy(options);
   const uint32_t bones = static_cast<uint32_t>(hair.bone_names.size());
   REQUIRE(bones > 1);
   side_by_side(hair, [&](test::GpuInstance& gpu, reference::Simulator& ref, const reference::SceneGeometry& geometry) {
