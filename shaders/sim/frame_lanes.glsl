@@ -16,7 +16,7 @@
 //     values move through shared memory between barriers.
 // Both run the same arithmetic in the same order.
 // An exchange is lanes_put (every lane publishes up to three values), lanes_get* (any lane's published value, called
-// by every lane of the strand: shuffles need their source active) and lanes_done (before the next lanes_put).
+// by every lane of the strand: shuffles need their source active), valid until the next lanes_put.
 //
 // The host uploads the compliant constants in GroupParams: global_stiffness = the global spring's fraction at this h,
 // reserved0 = the bending compliance alpha / h^2 at the calibration edge (31 edges per strand), reserved1 = the
@@ -77,7 +77,6 @@ void lanes_put(uint r, vec4 a, vec4 b, vec4 c) {
 vec4 lanes_get0(uint src) { return subgroupShuffle(tvk_put0, tvk_lane_base + src); }
 vec4 lanes_get1(uint src) { return subgroupShuffle(tvk_put1, tvk_lane_base + src); }
 vec4 lanes_get2(uint src) { return subgroupShuffle(tvk_put2, tvk_lane_base + src); }
-void lanes_done() {}
 // Over the strand's lanes (a butterfly inside its cluster of LANES invocations).
 // NaN counts as +infinity in both backends' reductions, so that every lane of a strand gets the same answer.
 float lanes_max(uint r, float x) {
@@ -89,7 +88,7 @@ float lanes_max(uint r, float x) {
 bool lanes_any(uint r, bool x) { return subgroupAny(x); }
 #else
 // Two slots per lane, used in turn: a lane writes a slot again only after the barrier of the exchange in between,
-// which every lane reaches after its reads of the slot's last exchange, so lanes_done needs no barrier of its own.
+// which every lane reaches after its reads of the slot's last exchange, so reads need no barrier after them.
 shared vec4 s_put0[2u * LANES];
 shared vec4 s_put1[2u * LANES];
 shared vec4 s_put2[2u * LANES];
@@ -105,7 +104,6 @@ void lanes_put(uint r, vec4 a, vec4 b, vec4 c) {
 vec4 lanes_get0(uint src) { return s_put0[tvk_slot + src]; }
 vec4 lanes_get1(uint src) { return s_put1[tvk_slot + src]; }
 vec4 lanes_get2(uint src) { return s_put2[tvk_slot + src]; }
-void lanes_done() {}
 float lanes_max(uint r, float x) {
   s_red[r] = isnan(x) ? uintBitsToFloat(0x7f800000u) : x;
   barrier();
@@ -147,7 +145,6 @@ void unpack4(vec4 v, out float x) { x = v.x; }
       vec4 H = lanes_get0(hi);                                                                                        \
       T Hd;                                                                                                           \
       unpack4(lanes_get1(hi), Hd);                                                                                    \
-      lanes_done();                                                                                                   \
       float a2 = 0.0, b2 = b, c2 = 0.0;                                                                               \
       T d2 = d;                                                                                                       \
       if (r >= s) {                                                                                                   \
@@ -184,7 +181,6 @@ TVK_TRIDIAGONAL(lanes_tridiagonal1, float)
     T xl, xr;                                                                                                         \
     unpack4(lanes_get0(lane_before(r)), xl);                                                                          \
     unpack4(lanes_get0(lane_after(r)), xr);                                                                           \
-    lanes_done();                                                                                                     \
     T res = d - b * x;                                                                                                \
     if (r > 0u) res -= a * xl;                                                                                        \
     if (r + 1u < LANES) res -= c * xr;                                                                                \
@@ -246,7 +242,6 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
     lanes_put(v, L_pos, L_prev, vec4(0.0));
     vec4 np = lanes_get0(lane_after(v));
     vec3 nq = lanes_get1(lane_after(v)).xyz;
-    lanes_done();
     vec3 u = vec3(0.0);
     if (v + 1u < N) u = constraint_direction(np.xyz - L_pos.xyz, nq - L_prev.xyz, lr.len);
     bool turns_here = lr.turns && dot(u, u) > 0.0;
@@ -268,7 +263,6 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
       }
       if (!lanes_any(v, j >= 0)) break;
     }
-    lanes_done();
     vec3 target = row ? quat_rotate(q, rest_dir) : vec3(0.0);
     // 2. All constraints at once, the targets held.
     float ra = 0.0, rb = 1.0, rc = 0.0;
@@ -287,7 +281,6 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
     vec3 dl = lanes_tridiagonal_refined(v, ra, rb, rc, rd);
     lanes_put(v, vec4(dl, 0.0), vec4(0.0), vec4(0.0));
     vec3 before_dl = lanes_get0(lane_before(v)).xyz;
-    lanes_done();
     if (v >= 1u && v < N && L_pos.w > 0.0) {
       vec3 before = v >= 2u ? before_dl : vec3(0.0);
       vec3 here = v + 1u < N ? dl : vec3(0.0);
@@ -305,14 +298,12 @@ void newton_lanes(uint v, LaneRest lr, float reach_floor, float weight, inout ve
   lanes_put(v, L_pos, L_prev, vec4(0.0));
   vec4 np = lanes_get0(lane_after(v));
   vec3 nq = lanes_get1(lane_after(v)).xyz;
-  lanes_done();
   vec3 gv = vec3(0.0);
   float rest = lr.len;
   if (seg) gv = constraint_direction(np.xyz - L_pos.xyz, nq - L_prev.xyz, rest);
   lanes_put(v, vec4(gv, 0.0), vec4(0.0), vec4(0.0));
   vec3 gl = lanes_get0(lane_before(v)).xyz;
   vec3 gr = lanes_get0(lane_after(v)).xyz;
-  lanes_done();
   float ra = 0.0, rb = 1.0, rc = 0.0, rd = 0.0;
   if (seg) {
     float wa = L_pos.w > 0.0 ? 1.0 : 0.0, wb = np.w > 0.0 ? 1.0 : 0.0;
@@ -326,7 +317,6 @@ void newton_lanes(uint v, LaneRest lr, float reach_floor, float weight, inout ve
   float l = lanes_tridiagonal_refined1(v, ra, rb, rc, rd);
   lanes_put(v, vec4(l, 0.0, 0.0, 0.0), vec4(0.0), vec4(0.0));
   float ll = lanes_get0(lane_before(v)).x;
-  lanes_done();
   vec3 dx = vec3(0.0);
   float ratio = weight;
   if (v < N && L_pos.w > 0.0) {
@@ -361,7 +351,6 @@ void transverse_lanes(uint v, LaneRest lr, vec3 move, float lam) {
   vec3 right_c = lanes_get0(lane_after(v)).xyz;
   float wl = lanes_get1(lane_before(v)).w;
   float wr = lanes_get1(lane_after(v)).w;
-  lanes_done();
   float kl = v > 0u && vert ? left.w : 0.0;
   float kr = seg ? ka : 0.0;
   float ra = 0.0, rb = 1.0, rc = 0.0;
@@ -388,7 +377,6 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
              (1.0 - a) * (step_params[TVK_STEP].wind[1].xyz + step_params[TVK_STEP].wind[3].xyz);
     lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
     vec3 before = lanes_get0(lane_before(v)).xyz;
-    lanes_done();
     if (vert && v > 0u && L_pos.w > 0.0) {
       vec3 e = L_pos.xyz - before;
       float len = length(e);
@@ -413,7 +401,6 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
   for (uint extra = 0u; extra < kCompliantExtraNewton; ++extra) {
     lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
     vec4 np = lanes_get0(lane_after(v));
-    lanes_done();
     float off = 0.0;
     if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
     // Weighted by how far over the tolerance the worst segment is, as the reference (continuous in the state).
@@ -439,7 +426,6 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
     // As the serial pass: the rest pose, its history carried back by this step's rigid motion.
     lanes_put(v, L_prev, vec4(0.0), vec4(0.0));
     vec3 q0 = lanes_get0(0u).xyz;
-    lanes_done();
     if (!finite3(q0)) q0 = vec3(0.0);
     if (vert) {
       vec4 back = skin_delta(g);
@@ -461,7 +447,6 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
     lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
     vec3 after = lanes_get0(lane_after(v)).xyz;
     vec3 before = lanes_get0(lane_before(v)).xyz;
-    lanes_done();
     vec3 e = v + 1u < N ? after - L_pos.xyz : L_pos.xyz - before;
     float len = length(e);
     bool has = vert && len > min_len;
@@ -482,7 +467,6 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
       }
       if (!lanes_any(v, j >= 0)) break;
     }
-    lanes_done();
     if (vert) {
       if (!found) last = quat_rotate(current_root_frame(g), vec3(1, 0, 0));
       tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
@@ -522,18 +506,16 @@ void main() {
     tvk_step = pc.step_index + s;
     tvk_skin_base = pc.skin_base + s * pc.skin_stride;
     if (vert) integrate_vertex(i, g, v);
-    // The roots' state for VSP, the anchor for the collisions (lane 0 integrated it).
-    lanes_put(v, L_pos, L_prev, L_prevprev);
-    vec4 x0 = lanes_get0(0u), x1 = lanes_get0(1u);
-    vec3 y0 = lanes_get1(0u).xyz, y1 = lanes_get1(1u).xyz;
-    vec3 z0 = lanes_get2(0u).xyz, z1 = lanes_get2(1u).xyz;
-    lanes_done();
+    // The anchor for the collisions (lane 0 integrated it), the roots' state for VSP.
     if (TVK_HAS(TVK_FEATURE_COLLISION)) {
       lanes_put(v, L_anchor, vec4(0.0), vec4(0.0));
       L_anchor = lanes_get0(0u);
-      lanes_done();
     }
     if (TVK_HAS(TVK_FEATURE_VSP)) {
+      lanes_put(v, L_pos, L_prev, L_prevprev);
+      vec4 x0 = lanes_get0(0u), x1 = lanes_get0(1u);
+      vec3 y0 = lanes_get1(0u).xyz, y1 = lanes_get1(1u).xyz;
+      vec3 z0 = lanes_get2(0u).xyz, z1 = lanes_get2(1u).xyz;
       if (vert && v >= 1u && L_pos.w > 0.0) vsp_vertex_of(vsp_strand_from(g, x0, x1, y0, y1, z0, z1), i, v);
     }
     if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_lanes(g, v, lr, gp);
