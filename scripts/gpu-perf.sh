@@ -27,9 +27,10 @@ if [ ! -f "$MOHAWK" ] && [ -f "$RATBOY" ]; then
   "$BAKE" "$RATBOY" "${BONES[@]}" --follow 2 -o "$MOHAWK" > "$OUT/bake.log" 2>&1
 fi
 
-perf() {  # json name, path, then bench arguments; path "compliant" = the compliant model's lane-parallel kernel
+perf() {  # json name, path (TRESSVK_SIM_PATH: lanes, fused, passes), then bench arguments; path "compliant" = the
+          # compliant model's lane kernel
   local name=$1 path=$2 model=; shift 2
-  [ "$path" = compliant ] && { model=compliant; path=fused; }
+  [ "$path" = compliant ] && { model=compliant; path=; }
   TRESSVK_SIM_MODEL=$model TRESSVK_SIM_PATH=$path timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||
     echo "| $name | failed: $(tail -1 "$OUT/$name.err") |"
 }
@@ -50,10 +51,10 @@ table() {
   done
 }
 
-# MODELS=1: only the model table (follow-the-leader's fused kernel against the compliant model's lane-parallel kernel,
-# each with its step error against the reference of its own model), then stop.
+# MODELS=1: only the kernel table (PATHS, default: follow-the-leader's lane kernel and one-thread kernel, the compliant
+# model's lane kernel, each with its step error against the reference of its own model), then stop.
 if [ "${MODELS:-0}" = 1 ]; then
-  table models fused compliant | tee "$OUT/models.md"
+  table models ${PATHS:-lanes fused compliant} | tee "$OUT/models.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi

@@ -1,5 +1,5 @@
 // The compliant model's lane-parallel frame kernel, each strand a cluster of lanes of one subgroup exchanging values by
-// shuffles (where the subgroup holds the power of two >= N lanes). The kernel: frame_lanes.glsl.
+// shuffles (where the subgroup holds the power of two >= N lanes). The kernel: frame_lanes.glsl, lanes_compliant.glsl.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define TVK_LANES_SUBGROUP 1

@@ -30,7 +30,21 @@ const PassInfo kFrameLanes = {PassId::kFrame, "frame", k_spv_frame_lanes_comp, s
 const PassInfo kFrameLanesSubgroup = {PassId::kFrame, "frame", k_spv_frame_lanes_subgroup_comp,
                                       sizeof(k_spv_frame_lanes_subgroup_comp), Granularity::kGuide,
                                       Frequency::kPerFrame, all_bindings(), kFrameWrites, kFrameFeatures, true};
+const PassInfo kFrameLanesFtl = {PassId::kFrame, "frame", k_spv_frame_lanes_ftl_comp,
+                                 sizeof(k_spv_frame_lanes_ftl_comp), Granularity::kGuide, Frequency::kPerFrame,
+                                 all_bindings(), kFrameWrites, kFrameFeatures, true};
+const PassInfo kFrameLanesFtlSubgroup = {PassId::kFrame, "frame", k_spv_frame_lanes_ftl_subgroup_comp,
+                                         sizeof(k_spv_frame_lanes_ftl_subgroup_comp), Granularity::kGuide,
+                                         Frequency::kPerFrame, all_bindings(), kFrameWrites, kFrameFeatures, true};
 constexpr uint32_t kLanesVariantBit = 1u << 14;
+// Keeps the follow-the-leader lane kernels' pipelines apart from the compliant model's (FEATURES ignores it).
+constexpr uint32_t kLanesFtlBit = 1u << 13;
+// The follow-the-leader lane kernel runs its serial walks on every lane of the strand (one or two lanes do useful
+// work), so it issues about LANES times the walks' instructions of the one-thread kernel: it wins while the GPU is
+// short of strands to overlap (latency-bound), and loses once the lanes fill it. Measured on an NVIDIA H100, shake,
+// 32 vertices: 1,024 guides 43 / 125 us at 60 / 240 Hz against 74 / 205; 2,221 (Ratboy) 60 / 192 against 80 / 214;
+// 4,096 89 / 302 against 78 / 208 (docs/simulation.md). The crossover at 240 Hz is near 2,500 strands of 32 lanes.
+constexpr uint64_t kFtlLanesDefaultMaxInvocations = 2560u * 32u;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
 
@@ -49,7 +63,9 @@ SimPath sim_path_from_environment() {
     const char* v = std::getenv("TRESSVK_SIM_PATH");
     if (v && std::strcmp(v, "passes") == 0) return SimPath::kPasses;
     if (v && std::strcmp(v, "fused-shared") == 0) return SimPath::kFusedShared;
-    return SimPath::kFused;
+    if (v && std::strcmp(v, "fused") == 0) return SimPath::kFused;
+    if (v && std::strcmp(v, "lanes") == 0) return SimPath::kLanes;
+    return SimPath::kAuto;
   }();
   return path;
 }
@@ -92,25 +108,40 @@ bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bo
          lanes_for(vertices_per_strand, 1) <= subgroup_size;
 }
 
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
+bool ftl_lanes_by_default(uint32_t guide_count, uint32_t vertices_per_strand, bool fits_subgroup, bool pinned_tips) {
+  return fits_subgroup && !pinned_tips &&
+         uint64_t{guide_count} * lanes_for(vertices_per_strand, 1) <= kFtlLanesDefaultMaxInvocations;
+}
+
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, LanesModel model) {
   PassUse use = frame_pass_use(terms, false);
-  use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
+  const bool ftl = model == LanesModel::kFollowTheLeader;
+  use.info = ftl ? (subgroup ? &kFrameLanesFtlSubgroup : &kFrameLanesFtl)
+                 : (subgroup ? &kFrameLanesSubgroup : &kFrameLanes);
   use.features |= kLanesVariantBit;
+  if (ftl) use.features |= kLanesFtlBit;
   if (subgroup) use.features |= kSharedVariantBit;  // keeps the two lane variants' pipelines apart
   use.name = (subgroup ? "frame(lanes,subgroup)" : "frame(lanes)") + use.name.substr(5);
   return use;
 }
 
-bool is_frame_lanes(const PassInfo* info) { return info == &kFrameLanes || info == &kFrameLanesSubgroup; }
+bool is_frame_lanes(const PassInfo* info) {
+  return info == &kFrameLanes || info == &kFrameLanesSubgroup || info == &kFrameLanesFtl ||
+         info == &kFrameLanesFtlSubgroup;
+}
+
+namespace {
+bool is_subgroup_lanes(const PassInfo* info) { return info == &kFrameLanesSubgroup || info == &kFrameLanesFtlSubgroup; }
+}  // namespace
 
 uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size) {
-  if (info == &kFrameLanesSubgroup) return std::max(subgroup_size, kLanesSubgroupWorkgroup);
+  if (is_subgroup_lanes(info)) return std::max(subgroup_size, kLanesSubgroupWorkgroup);
   return lanes_for(vertices_per_strand, 32);
 }
 
 uint32_t frame_lanes_groups(const PassInfo* info, uint32_t guide_count, uint32_t vertices_per_strand,
                             uint32_t subgroup_size) {
-  if (info != &kFrameLanesSubgroup) return guide_count;
+  if (!is_subgroup_lanes(info)) return guide_count;
   const uint32_t per_group = frame_lanes_workgroup(info, vertices_per_strand, subgroup_size) /
                              lanes_for(vertices_per_strand, 1);
   return (guide_count + per_group - 1) / per_group;

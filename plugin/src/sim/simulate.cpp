@@ -157,13 +157,22 @@ struct InstanceWork {
 // The passes a frame of this instance records on the process's simulation path (TRESSVK_SIM_PATH): the fused frame
 // kernel (sim/fused.hpp; the shared-memory variant only where the strand block fits), or one pass per dispatch.
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
+  const bool fits_subgroup = sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size,
+                                                     ctx.subgroup_shuffle_compute);
+  const bool subgroup = sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto && fits_subgroup;
   if (model::compliant_model_from_environment())
-    return {sim::frame_lanes_pass_use(
-        terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
-                   sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size,
-                                           ctx.subgroup_shuffle_compute))};
+    return {sim::frame_lanes_pass_use(terms, subgroup, sim::LanesModel::kCompliant)};
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
+  // Strands pinned at their tip take the one-thread kernel (its Thomas solve is serial).
+  const bool pinned_tips = (terms.features & sim::kFeaturePinnedTips) != 0;
+  const bool lanes = path == sim::SimPath::kLanes
+                         ? !pinned_tips
+                         : path == sim::SimPath::kAuto &&
+                               sim::ftl_lanes_by_default(inst.asset->rest.guide_count,
+                                                         inst.asset->rest.vertices_per_strand, fits_subgroup,
+                                                         pinned_tips);
+  if (lanes) return {sim::frame_lanes_pass_use(terms, subgroup, sim::LanesModel::kFollowTheLeader)};
   const bool shared = path == sim::SimPath::kFusedShared &&
                       sim::frame_shared_bytes(inst.asset->rest.vertices_per_strand, terms.vsp) <=
                           ctx.device_properties.limits.maxComputeSharedMemorySize;

@@ -1,0 +1,304 @@
+// The compliant model's passes in the lane-parallel frame kernel (frame_lanes.glsl; the reference's
+// SimModel::kCompliant, docs/accuracy.md). Every per-substep solve is parallel over the lanes: the shape targets are
+// local (one minimal rotation per edge), the local-shape and length systems are tridiagonal and solved by parallel
+// cyclic reduction (log2 lanes steps), the damped Newton scale and the stretch test are reductions. The order is the
+// reference's (plugin/reference/src/simulator.cpp, local_shape_compliant and the kCompliant branch of
+// length_and_collision).
+//
+// The host uploads the compliant constants in GroupParams: global_stiffness = the global spring's fraction at this h,
+// reserved0 = the bending compliance alpha / h^2 at the calibration edge (31 edges per strand), reserved1 = the
+// bending damping tau / h.
+#ifndef TRESSVK_SIM_LANES_COMPLIANT_GLSL
+#define TRESSVK_SIM_LANES_COMPLIANT_GLSL
+
+const float kCalibrationSegments = 31.0;
+const uint kCompliantExtraNewton = 4u;
+const float kCompliantStretchTol = 1e-3;
+const float kCompliantReachFloorRel = 0.5;
+
+
+// Solves the tridiagonal system whose row r lane r holds (sub a, diagonal b, super c, right-hand side d; rows that are
+// not part of the system are the identity) by parallel cyclic reduction; returns x_r. Each step a lane publishes the
+// reciprocal of its diagonal, so that it divides once. TVK_TRIDIAGONAL(name, T) makes the solver for a right-hand side
+// of type T (float for the length rows, vec3 for the shape and transverse rows).
+#define TVK_TRIDIAGONAL(name, T)                                                                                      \
+  T name(uint r, float a, float b, float c, T d) {                                                                    \
+    for (uint s = 1u; s < LANES; s <<= 1u) {                                                                          \
+      float ib = 1.0 / b;                                                                                             \
+      lanes_put(r, vec4(a, ib, c, 0.0), to4(d), vec4(0.0));                                                           \
+      uint lo = r >= s ? r - s : r;                                                                                   \
+      uint hi = r + s < LANES ? r + s : r;                                                                            \
+      vec4 L = lanes_get0(lo);                                                                                        \
+      T Ld;                                                                                                           \
+      unpack4(lanes_get1(lo), Ld);                                                                                    \
+      vec4 H = lanes_get0(hi);                                                                                        \
+      T Hd;                                                                                                           \
+      unpack4(lanes_get1(hi), Hd);                                                                                    \
+      float a2 = 0.0, b2 = b, c2 = 0.0;                                                                               \
+      T d2 = d;                                                                                                       \
+      if (r >= s) {                                                                                                   \
+        float al = -a * L.y;                                                                                          \
+        a2 = al * L.x;                                                                                                \
+        b2 += al * L.z;                                                                                               \
+        d2 += al * Ld;                                                                                                \
+      }                                                                                                               \
+      if (r + s < LANES) {                                                                                            \
+        float ga = -c * H.y;                                                                                          \
+        c2 = ga * H.z;                                                                                                \
+        b2 += ga * H.x;                                                                                               \
+        d2 += ga * Hd;                                                                                                \
+      }                                                                                                               \
+      a = a2;                                                                                                         \
+      b = b2;                                                                                                         \
+      c = c2;                                                                                                         \
+      d = d2;                                                                                                         \
+    }                                                                                                                 \
+    return d / b;                                                                                                     \
+  }
+TVK_TRIDIAGONAL(lanes_tridiagonal3, vec3)
+TVK_TRIDIAGONAL(lanes_tridiagonal1, float)
+
+// The same with one step of iterative refinement: the residual of the first solution (in float, from the lanes'
+// neighbours) solved again and added. Parallel cyclic reduction's float error grows with the system's condition
+// (~N^2 for the weakly diagonally dominant length and shape systems) times the solution, which carries the strand's
+// whole load at low step rates; one refinement brings it back to rounding. (Skipping it where every row's residual
+// is already at rounding level measured slower on NVIDIA: the test costs a reduction per solve.)
+#define TVK_TRIDIAGONAL_REFINED(name, solve, T)                                                                       \
+  T name(uint r, float a, float b, float c, T d) {                                                                    \
+    T x = solve(r, a, b, c, d);                                                                                       \
+    lanes_put(r, to4(x), vec4(0.0), vec4(0.0));                                                                      \
+    T xl, xr;                                                                                                         \
+    unpack4(lanes_get0(lane_before(r)), xl);                                                                          \
+    unpack4(lanes_get0(lane_after(r)), xr);                                                                           \
+    T res = d - b * x;                                                                                                \
+    if (r > 0u) res -= a * xl;                                                                                        \
+    if (r + 1u < LANES) res -= c * xr;                                                                                \
+    return x + solve(r, a, b, c, res);                                                                                \
+  }
+TVK_TRIDIAGONAL_REFINED(lanes_tridiagonal_refined, lanes_tridiagonal3, vec3)
+TVK_TRIDIAGONAL_REFINED(lanes_tridiagonal_refined1, lanes_tridiagonal1, float)
+
+// ---- the lane's rest data, read once per frame ----------------------------------------------------------------------
+
+struct LaneRest {
+  float len;       // rest length of the edge leaving the vertex (0 for the tip and padding lanes)
+  float len_left;  // of the edge arriving (0 for the root)
+  bool turns;      // the local-shape frame turns onto the edge leaving the vertex (rest_info z of the vertex after)
+  vec3 edge;       // the edge leaving the vertex at rest, in the asset's frame
+  int frame_edge;  // the last edge before this one whose frame turns (-1: none)
+};
+
+LaneRest lane_rest(uint b, uint v) {
+  LaneRest r;
+  r.len = 0.0;
+  r.len_left = 0.0;
+  r.turns = false;
+  r.edge = vec3(0.0);
+  r.frame_edge = -1;
+  if (v + 1u < N) {
+    r.len = rest_info[b + v * TVK_BLOCK].x;
+    r.turns = rest_info[b + (v + 1u) * TVK_BLOCK].z != 0.0;
+    vec3 from = v == 0u ? vec3(0.0) : rest_pos[b + v * TVK_BLOCK].xyz;
+    r.edge = rest_pos[b + (v + 1u) * TVK_BLOCK].xyz - from;
+  }
+  if (v >= 1u && v < N) r.len_left = rest_info[b + (v - 1u) * TVK_BLOCK].x;
+  if (v < N) {
+    for (uint j = v; j-- > 0u;) {
+      if (rest_info[b + (j + 1u) * TVK_BLOCK].z != 0.0) {
+        r.frame_edge = int(j);
+        break;
+      }
+    }
+  }
+  return r;
+}
+
+// ---- the compliant model's passes ------------------------------------------------------------------------------------
+
+void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
+  vec4 skin = skin_rotation(g);
+  bool row = v >= 1u && v + 1u < N;
+  float rel = row ? kCalibrationSegments * lr.len / strand_rest_length(g) : 0.0;
+  float at = gp.reserved0 * rel * rel * rel;
+  float gm = gp.reserved1;
+  vec3 lam = vec3(0.0);
+  vec3 rest_dir = quat_rotate(skin, lr.edge);  // this lane's skinned rest edge
+  for (uint it = 0u; it < gp.local_iterations; ++it) {
+    // 1. Edge directions, then each constraint's target: its skinned rest edge turned by the minimal rotation of the
+    // last edge before it that turns the frame, from that edge's skinned rest direction onto its current one. Each
+    // lane makes the rotation of its own edge; a lane takes the one of its frame edge, or of the frame edge before
+    // that while an edge is too short to have a direction.
+    lanes_put(v, L_pos, L_prev, vec4(0.0));
+    vec4 np = lanes_get0(lane_after(v));
+    vec3 nq = lanes_get1(lane_after(v)).xyz;
+    vec3 u = vec3(0.0);
+    if (v + 1u < N) u = constraint_direction(np.xyz - L_pos.xyz, nq - L_prev.xyz, lr.len);
+    bool turns_here = lr.turns && dot(u, u) > 0.0;
+    vec4 turn = turns_here ? quat_from_two_unit(normalize(rest_dir), u) : vec4(0, 0, 0, 1);
+    lanes_put(v, turn, vec4(turns_here ? 1.0 : 0.0, float(lr.frame_edge), 0.0, 0.0), vec4(0.0));
+    vec4 q = vec4(0, 0, 0, 1);
+    int j = row ? lr.frame_edge : -1;
+    for (uint round = 0u; round < N; ++round) {
+      uint src = j >= 0 ? uint(j) : v;
+      vec4 qj = lanes_get0(src);
+      vec4 info = lanes_get1(src);
+      if (j >= 0) {
+        if (info.x > 0.5) {
+          q = qj;
+          j = -1;
+        } else {
+          j = int(info.y);
+        }
+      }
+      if (!lanes_any(v, j >= 0)) break;
+    }
+    vec3 target = row ? quat_rotate(q, rest_dir) : vec3(0.0);
+    // 2. All constraints at once, the targets held.
+    float ra = 0.0, rb = 1.0, rc = 0.0;
+    vec3 rd = vec3(0.0);
+    if (row) {
+      float wa = L_pos.w > 0.0 ? 1.0 : 0.0, wb = np.w > 0.0 ? 1.0 : 0.0;
+      if (wa + wb > 0.0) {
+        vec3 c = np.xyz - L_pos.xyz - target;
+        vec3 vel = (np.xyz - nq) - (L_pos.xyz - L_prev.xyz);
+        ra = v > 1u ? -(1.0 + gm) * wa : 0.0;
+        rc = v + 2u < N ? -(1.0 + gm) * wb : 0.0;
+        rb = (1.0 + gm) * (wa + wb) + at;
+        rd = -(c + at * lam + gm * vel);
+      }
+    }
+    vec3 dl = lanes_tridiagonal_refined(v, ra, rb, rc, rd);
+    lanes_put(v, vec4(dl, 0.0), vec4(0.0), vec4(0.0));
+    vec3 before_dl = lanes_get0(lane_before(v)).xyz;
+    if (v >= 1u && v < N && L_pos.w > 0.0) {
+      vec3 before = v >= 2u ? before_dl : vec3(0.0);
+      vec3 here = v + 1u < N ? dl : vec3(0.0);
+      L_pos = vec4(L_pos.xyz + before - here, L_pos.w);
+    }
+    if (row) lam += dl;
+  }
+}
+
+// One Newton step of every segment's length constraint (the reference's solve_lengths on the compliant model):
+// lane v holds segment v (v < N - 1) and vertex v. move and lam accumulate the step's move (vertex) and multiplier
+// (segment) for the transverse solve.
+void newton_lanes(uint v, LaneRest lr, float reach_floor, float weight, inout vec3 move, inout float lam) {
+  bool seg = v + 1u < N;
+  lanes_put(v, L_pos, L_prev, vec4(0.0));
+  vec4 np = lanes_get0(lane_after(v));
+  vec3 nq = lanes_get1(lane_after(v)).xyz;
+  vec3 gv = vec3(0.0);
+  float rest = lr.len;
+  if (seg) gv = constraint_direction(np.xyz - L_pos.xyz, nq - L_prev.xyz, rest);
+  lanes_put(v, vec4(gv, 0.0), vec4(0.0), vec4(0.0));
+  vec3 gl = lanes_get0(lane_before(v)).xyz;
+  vec3 gr = lanes_get0(lane_after(v)).xyz;
+  float ra = 0.0, rb = 1.0, rc = 0.0, rd = 0.0;
+  if (seg) {
+    float wa = L_pos.w > 0.0 ? 1.0 : 0.0, wb = np.w > 0.0 ? 1.0 : 0.0;
+    if (wa + wb > 0.0 && dot(gv, gv) > 0.25) {
+      rb = (wa + wb) * dot(gv, gv);
+      rd = dot(np.xyz - L_pos.xyz, gv) - rest;
+      ra = v > 0u ? -wa * dot(gv, gl) : 0.0;
+      rc = v + 2u < N ? -wb * dot(gv, gr) : 0.0;
+    }
+  }
+  float l = lanes_tridiagonal_refined1(v, ra, rb, rc, rd);
+  lanes_put(v, vec4(l, 0.0, 0.0, 0.0), vec4(0.0), vec4(0.0));
+  float ll = lanes_get0(lane_before(v)).x;
+  vec3 dx = vec3(0.0);
+  float ratio = weight;
+  if (v < N && L_pos.w > 0.0) {
+    if (seg) dx += l * gv;
+    if (v > 0u) dx -= ll * gl;
+    // Against segments of at least kCompliantReachFloorRel of the mean segment (see the reference's solve_lengths).
+    float reach = 0.5 * min(v > 0u ? max(lr.len_left, reach_floor) : 3.0e38, seg ? max(rest, reach_floor) : 3.0e38);
+    float len = length(dx);
+    if (len * weight > reach) ratio = reach / len;
+  }
+  float scale = lanes_min(v, ratio);
+  if (v < N && L_pos.w > 0.0) {
+    L_pos = vec4(L_pos.xyz + scale * dx, L_pos.w);
+    move += scale * dx;
+  }
+  if (seg) lam += scale * l;
+}
+
+// The transverse response at the average-acceleration state (the reference's implicit_transverse, alpha 1/4).
+void transverse_lanes(uint v, LaneRest lr, vec3 move, float lam) {
+  const float alpha = 0.25;
+  bool seg = v + 1u < N;
+  bool vert = v < N;
+  float ka = seg ? alpha * max(lam, 0.0) / lr.len : 0.0;
+  vec3 c = vec3(0.0);
+  if (vert) {
+    vec3 x1 = L_pos.xyz;
+    c = (1.0 / alpha) * (0.25 * x1 + 0.5 * L_prev.xyz + 0.25 * L_prevprev.xyz - (x1 - move));
+  }
+  lanes_put(v, vec4(c, ka), L_pos, vec4(0.0));
+  vec4 left = lanes_get0(lane_before(v));
+  vec3 right_c = lanes_get0(lane_after(v)).xyz;
+  float wl = lanes_get1(lane_before(v)).w;
+  float wr = lanes_get1(lane_after(v)).w;
+  float kl = v > 0u && vert ? left.w : 0.0;
+  float kr = seg ? ka : 0.0;
+  float ra = 0.0, rb = 1.0, rc = 0.0;
+  vec3 rd = vec3(0.0);
+  if (vert && L_pos.w > 0.0) {
+    if (v > 0u) rd -= kl * (c - left.xyz);
+    if (seg) rd -= kr * (c - right_c);
+    ra = v > 0u && wl > 0.0 ? -kl : 0.0;
+    rc = seg && wr > 0.0 ? -kr : 0.0;
+    rb = 1.0 + kl + kr;
+  }
+  vec3 delta = lanes_tridiagonal_refined(v, ra, rb, rc, rd);
+  if (vert && L_pos.w > 0.0) L_pos = vec4(L_pos.xyz + delta, L_pos.w);
+}
+
+void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool write_tangents) {
+  bool vert = v < N;
+
+  if (TVK_HAS(TVK_FEATURE_WIND)) {
+    // As the serial pass, but every segment's direction from the positions before the wind (the reference's compliant
+    // branch walks from the tip, so each parent is read before it is pushed).
+    float a = float(g % 20u) / 20.0;
+    vec3 w = a * (step_params[TVK_STEP].wind[0].xyz + step_params[TVK_STEP].wind[2].xyz) +
+             (1.0 - a) * (step_params[TVK_STEP].wind[1].xyz + step_params[TVK_STEP].wind[3].xyz);
+    lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
+    vec3 before = lanes_get0(lane_before(v)).xyz;
+    if (vert && v > 0u && L_pos.w > 0.0) {
+      vec3 e = L_pos.xyz - before;
+      float len = length(e);
+      vec3 push = w;
+      if (len > kDirectionEps * lr.len_left) {
+        vec3 t = e / len;
+        push = w - dot(w, t) * t;
+      }
+      L_pos = vec4(L_pos.xyz + push, L_pos.w);
+    }
+  }
+
+  // Every lane holds the anchor here (main), as collide_vertex reads it.
+  if (TVK_HAS(TVK_FEATURE_COLLISION) && vert) collide_vertex(g, b, v);
+
+  vec3 move = vec3(0.0);
+  float lam = 0.0;
+  float reach_floor = kCompliantReachFloorRel * strand_rest_length(g) / float(N - 1u);
+  newton_lanes(v, lr, reach_floor, 1.0, move, lam);
+  transverse_lanes(v, lr, move, lam);
+  for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(v, lr, reach_floor, 1.0, move, lam);
+  for (uint extra = 0u; extra < kCompliantExtraNewton; ++extra) {
+    lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
+    vec4 np = lanes_get0(lane_after(v));
+    float off = 0.0;
+    if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
+    // Weighted by how far over the tolerance the worst segment is, as the reference (continuous in the state).
+    float worst = lanes_max(v, off);
+    if (!(worst > kCompliantStretchTol)) break;
+    newton_lanes(v, lr, reach_floor, min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0), move, lam);
+  }
+
+  finish_lanes(g, b, v, gp, write_tangents);
+}
+
+#endif
