@@ -27,10 +27,11 @@ if [ ! -f "$MOHAWK" ] && [ -f "$RATBOY" ]; then
   "$BAKE" "$RATBOY" "${BONES[@]}" --follow 2 -o "$MOHAWK" > "$OUT/bake.log" 2>&1
 fi
 
-perf() {  # json name, path (TRESSVK_SIM_PATH: lanes, fused, passes), then bench arguments; path "compliant" = the
-          # compliant model's lane kernel
+perf() {  # json name, path (TRESSVK_SIM_PATH: default = unset, runs, fused, passes), then bench arguments; path
+          # "compliant" = the compliant model's lane kernel
   local name=$1 path=$2 model=; shift 2
   [ "$path" = compliant ] && { model=compliant; path=; }
+  [ "$path" = default ] && path=
   TRESSVK_SIM_MODEL=$model TRESSVK_SIM_PATH=$path timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||
     echo "| $name | failed: $(tail -1 "$OUT/$name.err") |"
 }
@@ -51,17 +52,17 @@ table() {
   done
 }
 
-# MODELS=1: only the kernel table (PATHS, default: follow-the-leader's lane kernel and one-thread kernel, the compliant
-# model's lane kernel, each with its step error against the reference of its own model), then stop.
+# MODELS=1: only the kernel table (PATHS, default: follow-the-leader's default choice, its one-thread kernel, the
+# compliant model's lane kernel, each with its step error against the reference of its own model), then stop.
 if [ "${MODELS:-0}" = 1 ]; then
-  table models ${PATHS:-lanes fused compliant} | tee "$OUT/models.md"
+  table models ${PATHS:-default fused compliant} | tee "$OUT/models.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi
 
 # Both paths (and the shared-memory variant of the frame kernel at 240 Hz).
 {
-  table table fused passes
+  table table default fused passes
   [ -f "$MOHAWK" ] && perf "table-ratboy-fused-shared-240" fused-shared --asset "$MOHAWK" --step-rate 240 $T
   perf "table-curly1M-fused-shared-240" fused-shared --builtin curly --guides 32768 --step-rate 240 $T
   perf "table-curly4M-fused-shared-240" fused-shared --builtin curly --guides 131072 --step-rate 240 $T
@@ -75,7 +76,7 @@ S="--scene shake --frames 120 --warmup 30 --error-frames 1"
   echo "|---|---|---|---|---|---|---|---|---|"
   for guides in 320 1024 3200 10240 32768 131072 524288; do
     for rate in 60 120 240; do
-      for path in fused passes; do
+      for path in default fused passes; do
         if [ "$SECONDS" -gt "$BUDGET" ]; then echo "| budget of ${BUDGET} s spent: curly $guides x 32 at $rate Hz ($path) not run |"; continue; fi
         perf "sweep-$path-$guides-$rate" "$path" --builtin curly --guides "$guides" --step-rate "$rate" $S
       done

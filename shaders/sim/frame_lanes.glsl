@@ -1,20 +1,16 @@
-// The lane-parallel frame kernel: one dispatch per frame runs every substep of a strand model, one lane per vertex.
-// Each lane keeps its vertex's state (position, history, VSP's second history) and its rest data in registers for the
-// whole frame. Integration and VSP are the per-vertex functions every path calls (integrate.glsl, vsp.glsl); the
-// model's own passes come from one of two files, chosen at compile time:
-//   lanes_ftl.glsl (TVK_LANES_FTL): the follow-the-leader model (the default): its serial walks (local shape from the
-//     root, wind, the length sweeps) pass their state from lane to lane, one vertex per exchange, with the arithmetic
-//     of the one-thread-per-strand kernel (frame.glsl), so both give the same float results;
-//   lanes_compliant.glsl: the compliant model (TRESSVK_SIM_MODEL=compliant), whose solves are parallel over the lanes
-//     (parallel cyclic reduction, reductions).
-// The step's finish (velocity clamp, non-finite reset, tangents) and the follow hairs are here, common to both.
+// The lane-parallel frame kernel of the compliant model (the reference's SimModel::kCompliant, docs/accuracy.md): one
+// dispatch per frame runs every substep, one lane per vertex. Each lane keeps its vertex's state (position, history,
+// VSP's second history) and its rest data in registers for the whole frame. Integration and VSP are the per-vertex
+// functions every path calls (integrate.glsl, vsp.glsl); the model's own passes, whose solves are parallel over the
+// lanes (parallel cyclic reduction, reductions), are in lanes_compliant.glsl; the step's finish (velocity clamp,
+// non-finite reset, tangents) and the follow hairs are here.
 //
 // Lanes see each other's values only through the exchange below, which has two backends:
-//   *_subgroup.comp (TVK_LANES_SUBGROUP): a strand is a cluster of LANES consecutive invocations of one subgroup
+//   frame_lanes_subgroup.comp (TVK_LANES_SUBGROUP): a strand is a cluster of LANES consecutive invocations of one subgroup
 //     (LANES = the power of two >= N, so the host uses it where the subgroup holds LANES lanes: N <= 32 on NVIDIA);
 //     values move by subgroup shuffles, with no shared memory and no barrier; a workgroup holds WORKGROUP_SIZE / LANES
 //     strands.
-//   the others: one strand per workgroup of LANES = WORKGROUP_SIZE invocations (any subgroup size, N up to 128);
+//   frame_lanes.comp: one strand per workgroup of LANES = WORKGROUP_SIZE invocations (any subgroup size, N up to 128);
 //     values move through shared memory between barriers.
 // Both run the same arithmetic in the same order.
 // An exchange is lanes_put (every lane publishes up to three values), lanes_get* (any lane's published value, called
@@ -54,7 +50,7 @@ uint tvk_skin_base;
 
 #include "sim/integrate.glsl"
 #include "sim/vsp.glsl"
-#include "sim/length.glsl"  // finite3, constraint_direction, collide_vertex, sweep_step (not its per-strand walks)
+#include "sim/length.glsl"  // finite3, constraint_direction, collide_vertex (not its per-strand walks)
 #include "sim/follow.glsl"
 
 // ---- the exchange ------------------------------------------------------------------------------------------------
@@ -202,11 +198,7 @@ void finish_lanes(uint g, uint b, uint v, GroupParams gp, bool write_tangents) {
   }
 }
 
-#ifdef TVK_LANES_FTL
-#include "sim/lanes_ftl.glsl"
-#else
 #include "sim/lanes_compliant.glsl"
-#endif
 
 void main() {
 #ifdef TVK_LANES_SUBGROUP

@@ -1,32 +1,32 @@
 // Which simulation kernel the default path (TRESSVK_SIM_PATH unset) records for the follow-the-leader model
-// (plugin/src/sim/fused.hpp): the lane kernel for small grooms whose strands fit the subgroup, the one-thread kernel
-// otherwise (the H100 crossover in fused.cpp).
+// (plugin/src/sim/fused.hpp): the run kernel up to 768 k guide vertices (runs of 4 up to 160 k), the one-thread kernel
+// above; the crossovers measured on an NVIDIA H100 (fused.cpp).
 #include <catch2/catch_test_macros.hpp>
 
 #include "sim/fused.hpp"
 
-using tressvk::sim::ftl_lanes_by_default;
 using tressvk::sim::lanes_fit_subgroup;
+using tressvk::sim::run_length_for;
+using tressvk::sim::runs_fit_subgroup;
 
-TEST_CASE("the default path takes the lane kernel for small grooms only", "[plugin][simulation]") {
-  // Ratboy (2,221 guides x 32) and a 1,024-guide groom measured faster on lanes; 4,096 guides and up slower.
-  CHECK(ftl_lanes_by_default(2221, 32, true, false));
-  CHECK(ftl_lanes_by_default(1024, 32, true, false));
-  CHECK_FALSE(ftl_lanes_by_default(4096, 32, true, false));
-  CHECK_FALSE(ftl_lanes_by_default(32768, 32, true, false));
-  // The bound counts lanes: shorter strands take fewer lanes each.
-  CHECK(ftl_lanes_by_default(4096, 16, true, false));
-  CHECK(ftl_lanes_by_default(10240, 8, true, false));
-  // Never where the strand does not fit the subgroup or a strand is pinned at its tip (the Thomas solve is serial).
-  CHECK_FALSE(ftl_lanes_by_default(64, 32, false, false));
-  CHECK_FALSE(ftl_lanes_by_default(64, 32, true, true));
+TEST_CASE("the default path takes runs of 4, then of 8, then the one-thread kernel as grooms grow",
+          "[plugin][simulation]") {
+  CHECK(run_length_for(2221, 32, true) == 4);    // Ratboy: runs of 4 measured fastest
+  CHECK(run_length_for(4096, 32, true) == 4);
+  CHECK(run_length_for(8192, 32, true) == 8);    // runs of 8 fastest from 8,192 x 32 to 16,384 x 32
+  CHECK(run_length_for(16384, 32, true) == 8);
+  CHECK(run_length_for(32768, 32, true) == 0);   // 1 M guide vertices: the one-thread kernel
+  CHECK(run_length_for(32768, 32, false) == 8);  // TRESSVK_SIM_PATH=runs: never falls back
+  CHECK(run_length_for(65536, 8, true) == 8);    // the bounds count guide vertices
 }
 
-TEST_CASE("a strand fits the subgroup when the power of two at or above N does", "[plugin][simulation]") {
-  CHECK(lanes_fit_subgroup(32, 32, true));
-  CHECK(lanes_fit_subgroup(17, 32, true));
+TEST_CASE("a strand fits the subgroup when its lanes do", "[plugin][simulation]") {
+  CHECK(runs_fit_subgroup(32, 8, 32, true));   // 4 lanes
+  CHECK(runs_fit_subgroup(32, 4, 8, true));    // 8 lanes: lavapipe's subgroup
+  CHECK_FALSE(runs_fit_subgroup(64, 4, 8, true));
+  CHECK(runs_fit_subgroup(128, 4, 32, true));  // 32 lanes
+  CHECK_FALSE(runs_fit_subgroup(32, 8, 32, false));  // no shuffles in compute shaders
+  CHECK(lanes_fit_subgroup(32, 32, true));  // the compliant model's lane kernel: a lane per vertex
   CHECK_FALSE(lanes_fit_subgroup(33, 32, true));
-  CHECK(lanes_fit_subgroup(8, 8, true));  // lavapipe's subgroup
   CHECK_FALSE(lanes_fit_subgroup(32, 8, true));
-  CHECK_FALSE(lanes_fit_subgroup(8, 32, false));  // no shuffles in compute shaders
 }

@@ -213,6 +213,9 @@ int execute_perf_command(const PerfCommand& given) {
     std::vector<const char*> pass_names(np);
     tressvk_get_recorded_passes(ctx, pass_names.data(), np);
     const char* path_env = std::getenv("TRESSVK_SIM_PATH");
+    // The kernel that ran: the frame pass's name up to its terms ("frame(runs4)", "frame"), or "passes".
+    std::string kernel = np > 1 ? std::string("passes") : np == 1 ? std::string(pass_names[0]) : std::string();
+    kernel = kernel.substr(0, kernel.find('+'));
 
     const double gpu_ms = percentile(frame_ms, 0.5);
 
@@ -220,7 +223,8 @@ int execute_perf_command(const PerfCommand& given) {
         {"device", dev.description()},
         {"groom", groom_name},
         {"scene", cmd.scene},
-        {"sim_path", path_env ? path_env : "fused"},
+        {"sim_path", path_env && *path_env ? path_env : "default"},
+        {"kernel", kernel},
         {"guides", groom.guide_count()},
         {"vertices_per_strand", groom.vertices_per_strand},
         {"follow_per_guide", groom.follow_per_guide},
@@ -255,10 +259,11 @@ int execute_perf_command(const PerfCommand& given) {
   }
 
   if (cmd.table_row) {
-    // | groom | guide vertices | step rate | path | us/frame | p99 | GB/s (copy) | dispatches | step error |
-    std::printf("| %s | %llu | %.0f Hz | %s | %.1f | %.1f | %.0f (%.0f) | %u | %.2g |\n",
+    // | groom | guide vertices | step rate | path (kernel) | us/frame | p99 | GB/s (copy) | dispatches | step error |
+    std::printf("| %s | %llu | %.0f Hz | %s (%s) | %.1f | %.1f | %.0f (%.0f) | %u | %.2g |\n",
                 out["groom"].get<std::string>().c_str(), static_cast<unsigned long long>(out["guide_vertices"].get<uint64_t>()),
                 out["step_rate_hz"].get<double>(), out["sim_path"].get<std::string>().c_str(),
+                out["kernel"].get<std::string>().c_str(),
                 1e3 * out["gpu_ms_per_frame"].get<double>(), 1e3 * out["gpu_ms_per_frame_p99"].get<double>(),
                 out["achieved_gb_per_s"].get<double>(), out["copy_gb_per_s"].get<double>(),
                 out["dispatches_per_frame"].get<uint32_t>(), out["step_error_max_rel"].get<double>());

@@ -30,21 +30,23 @@ const PassInfo kFrameLanes = {PassId::kFrame, "frame", k_spv_frame_lanes_comp, s
 const PassInfo kFrameLanesSubgroup = {PassId::kFrame, "frame", k_spv_frame_lanes_subgroup_comp,
                                       sizeof(k_spv_frame_lanes_subgroup_comp), Granularity::kGuide,
                                       Frequency::kPerFrame, all_bindings(), kFrameWrites, kFrameFeatures, true};
-const PassInfo kFrameLanesFtl = {PassId::kFrame, "frame", k_spv_frame_lanes_ftl_comp,
-                                 sizeof(k_spv_frame_lanes_ftl_comp), Granularity::kGuide, Frequency::kPerFrame,
-                                 all_bindings(), kFrameWrites, kFrameFeatures, true};
-const PassInfo kFrameLanesFtlSubgroup = {PassId::kFrame, "frame", k_spv_frame_lanes_ftl_subgroup_comp,
-                                         sizeof(k_spv_frame_lanes_ftl_subgroup_comp), Granularity::kGuide,
-                                         Frequency::kPerFrame, all_bindings(), kFrameWrites, kFrameFeatures, true};
+// One SPIR-V, two run lengths (RUN, specialisation constant 5): the host tells them apart by the PassInfo.
+const PassInfo kFrameRuns4 = {PassId::kFrame, "frame", k_spv_frame_runs_comp, sizeof(k_spv_frame_runs_comp),
+                              Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites, kFrameFeatures,
+                              true};
+const PassInfo kFrameRuns8 = kFrameRuns4;
 constexpr uint32_t kLanesVariantBit = 1u << 14;
-// Keeps the follow-the-leader lane kernels' pipelines apart from the compliant model's (FEATURES ignores it).
-constexpr uint32_t kLanesFtlBit = 1u << 13;
-// The follow-the-leader lane kernel runs its serial walks on every lane of the strand (one or two lanes do useful
-// work), so it issues about LANES times the walks' instructions of the one-thread kernel: it wins while the GPU is
-// short of strands to overlap (latency-bound), and loses once the lanes fill it. Measured on an NVIDIA H100, shake,
-// 32 vertices: 1,024 guides 43 / 125 us at 60 / 240 Hz against 74 / 205; 2,221 (Ratboy) 60 / 192 against 80 / 214;
-// 4,096 89 / 302 against 78 / 208 (docs/simulation.md). The crossover at 240 Hz is near 2,500 strands of 32 lanes.
-constexpr uint64_t kFtlLanesDefaultMaxInvocations = 2560u * 32u;
+// The run kernel's pipelines, and its run of 4 (FEATURES ignores both).
+constexpr uint32_t kRunsBit = 1u << 12;
+constexpr uint32_t kRuns4Bit = 1u << 13;
+// The run kernel issues each serial walk's instructions once per 32 / RL strands (RL lanes a strand) while the one-thread
+// kernel issues them once per 32: it wins while the GPU is short of strands to overlap and its per-vertex phases
+// matter, and loses once the strands fill it. Measured on an NVIDIA H100, curly x 32, shake, 240 Hz (60 Hz), us per
+// frame, run of 4 / run of 8 / one-thread: 1,024 guides 116 / 141 / 203 (43 / 51 / 74); 4,096 132 / 143 / 205 (49 /
+// 53 / 76); 8,192 248 / 178 / 243 (84 / 61 / 105); 16,384 426 / 360 / 403 (149 / 132 / 140); 32,768 804 / 690 / 608
+// (267 / 238 / 205) (docs/simulation.md). Bounds in guide vertices: a run of 4 up to 160 k, of 8 up to 768 k.
+constexpr uint64_t kRuns4MaxGuideVertices = 160u * 1024u;
+constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
 
@@ -64,7 +66,7 @@ SimPath sim_path_from_environment() {
     if (v && std::strcmp(v, "passes") == 0) return SimPath::kPasses;
     if (v && std::strcmp(v, "fused-shared") == 0) return SimPath::kFusedShared;
     if (v && std::strcmp(v, "fused") == 0) return SimPath::kFused;
-    if (v && std::strcmp(v, "lanes") == 0) return SimPath::kLanes;
+    if (v && std::strcmp(v, "runs") == 0) return SimPath::kRuns;
     return SimPath::kAuto;
   }();
   return path;
@@ -108,30 +110,67 @@ bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bo
          lanes_for(vertices_per_strand, 1) <= subgroup_size;
 }
 
-bool ftl_lanes_by_default(uint32_t guide_count, uint32_t vertices_per_strand, bool fits_subgroup, bool pinned_tips) {
-  return fits_subgroup && !pinned_tips &&
-         uint64_t{guide_count} * lanes_for(vertices_per_strand, 1) <= kFtlLanesDefaultMaxInvocations;
-}
-
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, LanesModel model) {
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
   PassUse use = frame_pass_use(terms, false);
-  const bool ftl = model == LanesModel::kFollowTheLeader;
-  use.info = ftl ? (subgroup ? &kFrameLanesFtlSubgroup : &kFrameLanesFtl)
-                 : (subgroup ? &kFrameLanesSubgroup : &kFrameLanes);
+  use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
   use.features |= kLanesVariantBit;
-  if (ftl) use.features |= kLanesFtlBit;
   if (subgroup) use.features |= kSharedVariantBit;  // keeps the two lane variants' pipelines apart
   use.name = (subgroup ? "frame(lanes,subgroup)" : "frame(lanes)") + use.name.substr(5);
   return use;
 }
 
+uint32_t run_length_from_environment() {
+  static const uint32_t run = [] {
+    const char* v = std::getenv("TRESSVK_SIM_RUN");
+    if (v && std::strcmp(v, "4") == 0) return 4u;
+    if (v && std::strcmp(v, "8") == 0) return 8u;
+    return 0u;
+  }();
+  return run;
+}
+
+uint32_t run_lanes(uint32_t vertices_per_strand, uint32_t run_length) {
+  return lanes_for((vertices_per_strand + run_length - 1) / run_length, 1);
+}
+
+bool runs_fit_subgroup(uint32_t vertices_per_strand, uint32_t run_length, uint32_t subgroup_size,
+                       bool shuffle_compute) {
+  return shuffle_compute && subgroup_size >= 4 && (subgroup_size & (subgroup_size - 1)) == 0 &&
+         run_lanes(vertices_per_strand, run_length) <= subgroup_size;
+}
+
+uint32_t run_length_for(uint32_t guide_count, uint32_t vertices_per_strand, bool fall_back) {
+  const uint64_t work = uint64_t{guide_count} * vertices_per_strand;
+  if (work <= kRuns4MaxGuideVertices) return 4;
+  if (work <= kRuns8MaxGuideVertices || !fall_back) return 8;
+  return 0;
+}
+
+PassUse frame_runs_pass_use(const SceneTerms& terms, uint32_t run_length) {
+  PassUse use = frame_pass_use(terms, false);
+  use.info = run_length == 4 ? &kFrameRuns4 : &kFrameRuns8;
+  use.features |= kRunsBit | (run_length == 4 ? kRuns4Bit : 0u);
+  use.name = (run_length == 4 ? "frame(runs4)" : "frame(runs8)") + use.name.substr(5);
+  return use;
+}
+
+uint32_t frame_run_length(const PassInfo* info) {
+  return info == &kFrameRuns4 ? 4u : info == &kFrameRuns8 ? 8u : 0u;
+}
+
 bool is_frame_lanes(const PassInfo* info) {
-  return info == &kFrameLanes || info == &kFrameLanesSubgroup || info == &kFrameLanesFtl ||
-         info == &kFrameLanesFtlSubgroup;
+  return info == &kFrameLanes || info == &kFrameLanesSubgroup || frame_run_length(info) != 0;
 }
 
 namespace {
-bool is_subgroup_lanes(const PassInfo* info) { return info == &kFrameLanesSubgroup || info == &kFrameLanesFtlSubgroup; }
+bool is_subgroup_lanes(const PassInfo* info) {
+  return info == &kFrameLanesSubgroup || frame_run_length(info) != 0;
+}
+// Invocations per strand.
+uint32_t strand_lanes(const PassInfo* info, uint32_t vertices_per_strand) {
+  if (const uint32_t run = frame_run_length(info)) return run_lanes(vertices_per_strand, run);
+  return lanes_for(vertices_per_strand, 1);
+}
 }  // namespace
 
 uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size) {
@@ -143,7 +182,7 @@ uint32_t frame_lanes_groups(const PassInfo* info, uint32_t guide_count, uint32_t
                             uint32_t subgroup_size) {
   if (!is_subgroup_lanes(info)) return guide_count;
   const uint32_t per_group = frame_lanes_workgroup(info, vertices_per_strand, subgroup_size) /
-                             lanes_for(vertices_per_strand, 1);
+                             strand_lanes(info, vertices_per_strand);
   return (guide_count + per_group - 1) / per_group;
 }
 

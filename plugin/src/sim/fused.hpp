@@ -11,15 +11,15 @@
 namespace tressvk::sim {
 
 enum class SimPath : uint32_t {
-  kAuto,         // the default: kLanes where ftl_lanes_by_default (small grooms), else kFused
-  kLanes,        // the lane kernel (frame_lanes_ftl*.comp; shared-memory exchange where the subgroup is too small),
-                 // except for strands pinned at their tip (kFused)
+  kAuto,         // the default: kRuns up to 768 k guide vertices (run_length_for) where the runs fit the subgroup
+                 // and no strand is pinned at its tip, else kFused
+  kRuns,         // the run kernel (frame_runs.comp) wherever it fits and no strand is pinned at its tip, else kFused
   kFused,        // frame.comp: one thread per strand, the strand in private arrays
   kFusedShared,  // frame_shared.comp: the strand block in shared memory (where it fits, else kFused)
   kPasses,       // one dispatch per pass per substep
 };
 
-// TRESSVK_SIM_PATH = "lanes", "fused", "fused-shared" or "passes"; read once per process. Anything else: kAuto.
+// TRESSVK_SIM_PATH = "runs", "fused", "fused-shared" or "passes"; read once per process. Anything else: kAuto.
 SimPath sim_path_from_environment();
 
 // Shared memory the shared-memory variant needs for N vertices per strand (positions and history; VSP's second
@@ -33,22 +33,33 @@ PassUse frame_pass_use(const SceneTerms& terms, bool shared);
 // Workgroups of the frame pass: one per strand block of 32 guides.
 uint32_t frame_dispatch_groups(uint32_t guide_count);
 
-// The lane-parallel frame kernel (frame_lanes.glsl), one lane per vertex, for either model: follow-the-leader
-// (lanes_ftl.glsl) or compliant (lanes_compliant.glsl, TRESSVK_SIM_MODEL=compliant, which always takes it). Two
-// variants each: subgroup (a strand is a cluster of lanes of one subgroup, values move by shuffles;
-// frame_lanes*_subgroup.comp) where lanes_fit_subgroup, else shared (one strand per workgroup, values through shared
-// memory). TRESSVK_SIM_LANES=shared (read once per process) keeps the shared variant everywhere.
+// The compliant model's lane-parallel frame kernel (frame_lanes.glsl, TRESSVK_SIM_MODEL=compliant), one lane per
+// vertex, in two variants: subgroup (a strand is a cluster of lanes of one subgroup, values move by shuffles;
+// frame_lanes_subgroup.comp) where lanes_fit_subgroup, else shared (one strand per workgroup, values through shared
+// memory; frame_lanes.comp). TRESSVK_SIM_LANES=shared (read once per process) keeps the shared variant everywhere.
 // It records as the frame pass (PassId::kFrame) with its own pipeline.
 enum class LanesBackend { kAuto, kShared };
 LanesBackend lanes_backend_from_environment();
 // The power of two >= N fits the subgroup, and compute shaders may shuffle and vote.
 bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bool shuffle_compute);
-enum class LanesModel { kFollowTheLeader, kCompliant };
-// kAuto's choice for the follow-the-leader model: the lane kernel where the strand fits the subgroup, no strand is
-// pinned at its tip, and the groom has at most about 2,560 strands of 32 lanes (fused.cpp: the measured crossover).
-bool ftl_lanes_by_default(uint32_t guide_count, uint32_t vertices_per_strand, bool fits_subgroup, bool pinned_tips);
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, LanesModel model);
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup);
 bool is_frame_lanes(const PassInfo* info);
+
+// The follow-the-leader model's run kernel (frame_runs.glsl): each lane holds a run of 4 or 8 consecutive vertices
+// (RUN, specialisation constant 5), a strand is a cluster of RL = the power of two >= ceil(N / RUN) lanes of one
+// subgroup; subgroup shuffles only. It records as the frame pass; is_frame_lanes, frame_lanes_workgroup and
+// frame_lanes_groups cover it.
+// TRESSVK_SIM_RUN = "4" or "8" (read once per process) forces the run length; 0 when unset.
+uint32_t run_length_from_environment();
+// The run length for a groom (4 up to 160 k guide vertices, 8 above), or 0 (the one-thread kernel) above 768 k when
+// fall_back: the crossovers measured on an NVIDIA H100 (fused.cpp).
+uint32_t run_length_for(uint32_t guide_count, uint32_t vertices_per_strand, bool fall_back);
+// RL lanes fit the subgroup, and compute shaders may shuffle and vote.
+bool runs_fit_subgroup(uint32_t vertices_per_strand, uint32_t run_length, uint32_t subgroup_size,
+                       bool shuffle_compute);
+PassUse frame_runs_pass_use(const SceneTerms& terms, uint32_t run_length);
+// RUN of the frame pass (4 or 8), 0 for any other pass.
+uint32_t frame_run_length(const PassInfo* info);
 // Its workgroup size (WORKGROUP_SIZE): shared, the power of two >= N, at least 32; subgroup, whole subgroups, at
 // least 64 invocations. And its workgroups for G guides.
 uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size);

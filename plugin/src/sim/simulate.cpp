@@ -86,10 +86,11 @@ TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k,
     return r;
   const uint32_t wg = sim::is_frame_lanes(use.info) ? sim::frame_lanes_workgroup(use.info, n, ctx.subgroup_size)
                                                      : ctx.workgroup_size;
-  const std::array<uint32_t, 5> values = {wg, n, k, use.features, use.capsule_count};
-  std::array<VkSpecializationMapEntry, 5> entries{};
-  for (uint32_t i = 0; i < 5; ++i) entries[i] = {i, i * 4, 4};
-  const VkSpecializationInfo spec{5, entries.data(), sizeof(values), values.data()};
+  // Constant 5: the run kernel's RUN (other shaders have no constant 5, which Vulkan allows).
+  const std::array<uint32_t, 6> values = {wg, n, k, use.features, use.capsule_count, sim::frame_run_length(use.info)};
+  std::array<VkSpecializationMapEntry, 6> entries{};
+  for (uint32_t i = 0; i < 6; ++i) entries[i] = {i, i * 4, 4};
+  const VkSpecializationInfo spec{6, entries.data(), sizeof(values), values.data()};
   VkComputePipelineCreateInfo cpi{};
   cpi.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
   cpi.stage = {};
@@ -157,22 +158,22 @@ struct InstanceWork {
 // The passes a frame of this instance records on the process's simulation path (TRESSVK_SIM_PATH): the fused frame
 // kernel (sim/fused.hpp; the shared-memory variant only where the strand block fits), or one pass per dispatch.
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
-  const bool fits_subgroup = sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size,
-                                                     ctx.subgroup_shuffle_compute);
-  const bool subgroup = sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto && fits_subgroup;
   if (model::compliant_model_from_environment())
-    return {sim::frame_lanes_pass_use(terms, subgroup, sim::LanesModel::kCompliant)};
+    return {sim::frame_lanes_pass_use(
+        terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
+                   sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size,
+                                           ctx.subgroup_shuffle_compute))};
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
-  // Strands pinned at their tip take the one-thread kernel (its Thomas solve is serial).
-  const bool pinned_tips = (terms.features & sim::kFeaturePinnedTips) != 0;
-  const bool lanes = path == sim::SimPath::kLanes
-                         ? !pinned_tips
-                         : path == sim::SimPath::kAuto &&
-                               sim::ftl_lanes_by_default(inst.asset->rest.guide_count,
-                                                         inst.asset->rest.vertices_per_strand, fits_subgroup,
-                                                         pinned_tips);
-  if (lanes) return {sim::frame_lanes_pass_use(terms, subgroup, sim::LanesModel::kFollowTheLeader)};
+  // The run kernel (the default up to its measured crossover; strands pinned at their tip take the one-thread
+  // kernel, whose Thomas solve is serial).
+  if ((path == sim::SimPath::kAuto || path == sim::SimPath::kRuns) && (terms.features & sim::kFeaturePinnedTips) == 0) {
+    const uint32_t n = inst.asset->rest.vertices_per_strand;
+    uint32_t run = sim::run_length_from_environment();
+    if (run == 0) run = sim::run_length_for(inst.asset->rest.guide_count, n, path == sim::SimPath::kAuto);
+    if (run != 0 && sim::runs_fit_subgroup(n, run, ctx.subgroup_size, ctx.subgroup_shuffle_compute))
+      return {sim::frame_runs_pass_use(terms, run)};
+  }
   const bool shared = path == sim::SimPath::kFusedShared &&
                       sim::frame_shared_bytes(inst.asset->rest.vertices_per_strand, terms.vsp) <=
                           ctx.device_properties.limits.maxComputeSharedMemorySize;

@@ -1,6 +1,0 @@
-// The follow-the-leader model's lane-parallel frame kernel, one strand per workgroup, lanes exchanging values through
-// shared memory (any subgroup size; N up to 128). The kernel: frame_lanes.glsl, lanes_ftl.glsl.
-#version 450
-#extension GL_GOOGLE_include_directive : require
-#define TVK_LANES_FTL 1
-#include "sim/frame_lanes.glsl"
