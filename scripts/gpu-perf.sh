@@ -60,23 +60,27 @@ if [ "${MODELS:-0}" = 1 ]; then
   exit 0
 fi
 
-# Both paths (and the shared-memory variant of the frame kernel at 240 Hz).
-{
+# SWEEP_ONLY=1: skip this table. Every path (and the shared-memory variant of the one-thread kernel at 240 Hz).
+[ "${SWEEP_ONLY:-0}" = 1 ] || {
   table table default fused passes
   [ -f "$MOHAWK" ] && perf "table-ratboy-fused-shared-240" fused-shared --asset "$MOHAWK" --step-rate 240 $T
   perf "table-curly1M-fused-shared-240" fused-shared --builtin curly --guides 32768 --step-rate 240 $T
   perf "table-curly4M-fused-shared-240" fused-shared --builtin curly --guides 131072 --step-rate 240 $T
 } | tee "$OUT/table.md"
 
-# Scaling sweep: 10k .. 16M guide vertices (curly, 32 vertices per strand) at 60/120/240 Hz, both paths; the step
-# error of each row from one frame after its timed frames.
+# Scaling sweep: 10k .. 16M guide vertices (curly, 32 vertices per strand) at SWEEP_RATES (default 60 120 240) on
+# SWEEP_PATHS (default: default fused passes); the step error of each row from one frame after its timed frames. The
+# default path runs the one-thread kernel above 768 k guide vertices: its rows there are skipped when fused runs too.
 S="--scene shake --frames 120 --warmup 30 --error-frames 1"
 {
   echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
   echo "|---|---|---|---|---|---|---|---|---|"
   for guides in 320 1024 3200 10240 32768 131072 524288; do
-    for rate in 60 120 240; do
-      for path in default fused passes; do
+    for rate in ${SWEEP_RATES:-60 120 240}; do
+      for path in ${SWEEP_PATHS:-default fused passes}; do
+        if [ "$path" = default ] && [ "$guides" -gt 24576 ] && [[ " ${SWEEP_PATHS:-default fused passes} " == *" fused "* ]]; then
+          continue
+        fi
         if [ "$SECONDS" -gt "$BUDGET" ]; then echo "| budget of ${BUDGET} s spent: curly $guides x 32 at $rate Hz ($path) not run |"; continue; fi
         perf "sweep-$path-$guides-$rate" "$path" --builtin curly --guides "$guides" --step-rate "$rate" $S
       done

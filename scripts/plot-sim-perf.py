@@ -3,8 +3,8 @@
 
     /usr/bin/python3 scripts/plot-sim-perf.py OUTDIR docs/images/sim-perf.png
 
-Debian's python3-matplotlib. One line per simulation path (fused frame kernel, pass per dispatch) and step rate
-(sweep-PATH-GUIDES-RATE.json), log-log; AMD TressFX 4.1's own kernels on an NVIDIA H200 (one step, 3+3 iterations)
+Debian's python3-matplotlib. One line per simulation path (the default choice, the one-thread frame kernel, pass per
+dispatch, whichever the sweep ran) and step rate (sweep-PATH-GUIDES-RATE.json), log-log; AMD TressFX 4.1's own kernels on an NVIDIA H200 (one step, 3+3 iterations)
 as points; and the bandwidth floor: the bytes a frame must move (bytes_per_frame) at the plain copy speed measured in
 the same run (the fastest copy_gb_per_s of the run). The step error of every point is in the JSON file and the tables of docs/simulation.md.
 """
@@ -37,20 +37,30 @@ def main():
         sim_path, rate = m.group(1), int(m.group(3))
         x = r["guide_vertices"]
         series.setdefault((sim_path, rate), []).append((x, 1e3 * r["gpu_ms_per_frame"], r["step_error_max_rel"]))
-        if r.get("copy_gb_per_s", 0) > 0 and sim_path == "fused":
-            floor[x] = (r["bytes_per_frame"], r["copy_gb_per_s"])
+        if r.get("copy_gb_per_s", 0) > 0:
+            b, c = floor.get(x, (0, 0.0))
+            floor[x] = (max(b, r["bytes_per_frame"]), max(c, r["copy_gb_per_s"]))
         device = r.get("device", device)
     if not series:
         sys.exit("no sweep-*.json files in " + sys.argv[1])
+    # Above 768 k guide vertices the default is the one-thread kernel, whose rows the sweep runs once (as fused).
+    for (sim_path, rate), pts in list(series.items()):
+        if sim_path == "fused" and ("default", rate) in series:
+            have = {p[0] for p in series[("default", rate)]}
+            series[("default", rate)] += [p for p in pts if p[0] > 768 * 1024 and p[0] not in have]
     fig, ax = plt.subplots(figsize=(8, 5.5))
     colours = {60: "tab:green", 120: "tab:orange", 240: "tab:blue"}
+    looks = {  # path: (style, alpha, name)
+        "default": ("-o", 1.0, "default (run kernel up to 768 k, then one thread per strand)"),
+        "fused": ("--s", 0.6, "one thread per strand"),
+        "passes": (":d", 0.5, "pass per dispatch"),
+    }
     for (sim_path, rate), pts in sorted(series.items()):
         pts.sort()
         worst = max(p[2] for p in pts)
-        style = "-o" if sim_path == "fused" else "--s"
-        label = f"{'fused frame kernel' if sim_path == 'fused' else 'pass per dispatch'}, {rate} Hz (step error <= {worst:.1g})"
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], style, color=colours.get(rate, "grey"), label=label,
-                markersize=4, alpha=1.0 if sim_path == "fused" else 0.6)
+        style, alpha, name = looks.get(sim_path, ("-.", 0.6, sim_path))
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], style, color=colours.get(rate, "grey"),
+                label=f"{name}, {rate} Hz (step error <= {worst:.1g})", markersize=4, alpha=alpha)
     ax.plot([p[0] for p in TRESSFX_H200], [p[1] for p in TRESSFX_H200], "k^", markersize=8,
             label="AMD TressFX 4.1 kernels, NVIDIA H200 (1 step, 3+3 iterations)")
     if floor:
