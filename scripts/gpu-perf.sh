@@ -29,10 +29,11 @@ fi
 
 perf() {  # json name, path (TRESSVK_SIM_PATH: default = unset, runs, fused, passes), then bench arguments; path
           # "compliant" = the compliant model's lane kernel
-  local name=$1 path=$2 model=; shift 2
+  local name=$1 path=$2 model= run=; shift 2
   [ "$path" = compliant ] && { model=compliant; path=; }
   [ "$path" = default ] && path=
-  TRESSVK_SIM_MODEL=$model TRESSVK_SIM_PATH=$path timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||
+  case "$path" in runs4) path=runs run=4 ;; runs8) path=runs run=8 ;; esac
+  TRESSVK_SIM_MODEL=$model TRESSVK_SIM_PATH=$path TRESSVK_SIM_RUN=$run timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||
     echo "| $name | failed: $(tail -1 "$OUT/$name.err") |"
 }
 
@@ -56,6 +57,26 @@ table() {
 # compliant model's lane kernel, each with its step error against the reference of its own model), then stop.
 if [ "${MODELS:-0}" = 1 ]; then
   table models ${PATHS:-default fused compliant} | tee "$OUT/models.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# RUNS=1: only the run kernel's crossover table (runs of 4, of 8 and the one-thread kernel on curly 4,096, 8,192 and
+# 16,384 x 32, and the default on Ratboy, at 240 and 60 Hz; docs/simulation.md, "The run kernel"), then stop.
+if [ "${RUNS:-0}" = 1 ]; then
+  R="--scene shake --frames 120 --warmup 30 --error-frames 1"
+  {
+    echo "| groom | guide vertices | step rate | path (kernel) | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+    for rate in 240 60; do
+      [ -f "$MOHAWK" ] && perf "runs-ratboy-default-$rate" default --asset "$MOHAWK" --step-rate "$rate" $R
+      for guides in 4096 8192 16384; do
+        for path in runs4 runs8 fused; do
+          perf "runs-$path-$guides-$rate" "$path" --builtin curly --guides "$guides" --step-rate "$rate" $R
+        done
+      done
+    done
+  } | tee "$OUT/runs.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi

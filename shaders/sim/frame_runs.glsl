@@ -103,10 +103,13 @@ void local_shape_run_step(bool turns, float rest_in, vec3 edge, float s, inout v
   if (n.w > 0.0) n = vec4(n.xyz + d, n.w);
 }
 
-// The walks step a run's vertices in a loop that is not unrolled: each step reads the run's vertex at index 0 and its
-// neighbours at 1 and RUN - 1, then the run turns by one place (register moves); RUN turns restore it. Unrolled,
-// with the run indexed by the loop's constants, the walks' loops measured as if they missed the instruction cache
-// (NVIDIA H100, Ratboy at 240 Hz, runs of 4: 212 us, 59 of them without local shape; turning: 136 us).
+// Local shape steps a run's vertices in a loop that is not unrolled: each step reads the run's vertex at index 0 and
+// its neighbours at 1 and RUN - 1, then the run turns by one place (register moves); RUN turns restore it. Unrolled,
+// with the run indexed by the loop's constants, its loop measured as if it missed the instruction cache (NVIDIA H100,
+// Ratboy at 240 Hz, runs of 4: 212 us, 59 of them without local shape; turning: 136 us). The sweep's step is small:
+// unrolled it measured faster than turning (Ratboy 136.5 -> 129.8 us, curly 1 M in runs of 8 690 -> 608 us at 240 Hz),
+// and so did reading local shape's rest data from memory instead of turning it in registers on 1 M at 240 Hz only
+// (608 -> 556 us; Ratboy 130 -> 139, 1 M at 60 Hz 224 -> 228): not kept.
 void turn_run_shape() {
   vec4 p0 = R_pos[0];
   vec3 e0 = R_edge[0];
@@ -120,19 +123,6 @@ void turn_run_shape() {
   R_edge[RUN - 1u] = e0;
   R_len[RUN - 1u] = l0;
   R_turns = (R_turns >> 1u) | ((R_turns & 1u) << (RUN - 1u));
-}
-void turn_run_sweep() {
-  vec4 p0 = R_pos[0];
-  vec4 q0 = R_prev[0];
-  float l0 = R_len[0];
-  [[unroll]] for (uint j = 0u; j + 1u < RUN; ++j) {
-    R_pos[j] = R_pos[j + 1u];
-    R_prev[j] = R_prev[j + 1u];
-    R_len[j] = R_len[j + 1u];
-  }
-  R_pos[RUN - 1u] = p0;
-  R_prev[RUN - 1u] = q0;
-  R_len[RUN - 1u] = l0;
 }
 
 // Local shape (local_shape_strand). Round t: lane t takes the first walk of the pair over its run, lane t - 1 the
@@ -223,24 +213,22 @@ void runs_length(uint g, uint b, GroupParams gp, bool write_tangents) {
     for (uint t = 0u; t < RL; ++t) {
       vec4 lp = from_before(cp);
       if (tvk_r == t) {
-        // The run turns by one place a step (turn_run_sweep), as local shape's.
         SweepWalk sw;
         sw.p = lp;
-        tvk_k = 0u;
-        [[dont_unroll]] for (uint k = 0u; k < RUN; ++k) {
+        [[unroll]] for (uint k = 0u; k < RUN; ++k) {
           uint v = vtx(k);
+          tvk_k = k;
           if (v < N) {
             vec4 p = v == 0u ? R_pos[0] : sw.p;
             if (v + 1u < N) {
-              sw = SweepWalk(p, R_prev[0].xyz, last_sweep);
-              vec4 n = k + 1u < RUN ? R_pos[1] : n_right;
-              vec3 pn = k + 1u < RUN ? R_prev[1].xyz : pn_right;
-              R_pos[0] = sweep_step(sw, b, v, n, pn, R_len[0]);
+              sw = SweepWalk(p, R_prev[k].xyz, last_sweep);
+              vec4 n = k + 1u < RUN ? R_pos[k + 1u] : n_right;
+              vec3 pn = k + 1u < RUN ? R_prev[k + 1u].xyz : pn_right;
+              R_pos[k] = sweep_step(sw, b, v, n, pn, R_len[k]);
             } else {
-              R_pos[0] = p;
+              R_pos[k] = p;
             }
           }
-          turn_run_sweep();
         }
         cp = sw.p;
       }

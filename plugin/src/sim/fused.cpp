@@ -42,9 +42,9 @@ constexpr uint32_t kRuns4Bit = 1u << 13;
 // The run kernel issues each serial walk's instructions once per 32 / RL strands (RL lanes a strand) while the one-thread
 // kernel issues them once per 32: it wins while the GPU is short of strands to overlap and its per-vertex phases
 // matter, and loses once the strands fill it. Measured on an NVIDIA H100, curly x 32, shake, 240 Hz (60 Hz), us per
-// frame, run of 4 / run of 8 / one-thread: 1,024 guides 116 / 141 / 203 (43 / 51 / 74); 4,096 132 / 143 / 205 (49 /
-// 53 / 76); 8,192 248 / 178 / 243 (84 / 61 / 105); 16,384 426 / 360 / 403 (149 / 132 / 140); 32,768 804 / 690 / 608
-// (267 / 238 / 205) (docs/simulation.md). Bounds in guide vertices: a run of 4 up to 160 k, of 8 up to 768 k.
+// frame, run of 4 / run of 8 / one-thread: 4,096 guides 128 / 131 / 206 (48 / 50 / 78); 8,192 242 / 154 / 243 (83 /
+// 57 / 104); 16,384 409 / 319 / 400 (146 / 125 / 140); 32,768, run of 8 / one-thread, 608 / 606 (224 / 205)
+// (docs/simulation.md). Bounds in guide vertices: a run of 4 up to 160 k, of 8 up to 768 k.
 constexpr uint64_t kRuns4MaxGuideVertices = 160u * 1024u;
 constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.

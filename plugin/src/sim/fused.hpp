@@ -1,7 +1,10 @@
-// The fused frame kernel (shaders/sim/frame.glsl): one dispatch per instance per frame running every substep and
-// every pass the scene needs, the strand's state on chip. It is the default simulation path; the pass-per-dispatch
-// path (passes.hpp, one dispatch per pass per substep) stays behind TRESSVK_SIM_PATH=passes as a debugging aid that
-// times each pass on its own (docs/simulation.md).
+// The frame kernels: one dispatch per instance per frame running every substep and every pass the scene needs, the
+// strand's state on chip. Follow-the-leader (the default model) has two, which give the same float results: the run
+// kernel (shaders/sim/frame_runs.glsl, a run of 4 or 8 vertices a lane; the default up to 768 k guide vertices) and
+// the one-thread kernel (shaders/sim/frame.glsl, a strand a thread; larger grooms, strands pinned at their tip). The
+// compliant model has the lane kernel (frame_lanes.glsl). The pass-per-dispatch path (passes.hpp, one dispatch per
+// pass per substep) stays behind TRESSVK_SIM_PATH=passes as a debugging aid that times each pass on its own
+// (docs/simulation.md).
 #pragma once
 
 #include <cstdint>
