@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The simulation speed table and scaling sweep of docs/simulation.md ("Speed: the fused frame kernel"), with
+# The simulation speed tables and scaling sweep of docs/simulation.md ("Speed: which kernel runs"), with
 # `tressvk-bench perf` (frames in flight, no readback between timed frames, a plain copy of the frame's bytes timed
 # in the same run, the step error measured after the timed frames), for both simulation paths:
 #
