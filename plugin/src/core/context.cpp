@@ -1,7 +1,9 @@
 #include "core/context.hpp"
+
 #include "core/fault_injection.hpp"
 #include "core/objects.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <new>
@@ -144,13 +146,20 @@ TvkResult init_context(Context& ctx) {
   if (ctx.device_properties.apiVersion >= VK_API_VERSION_1_1 && vkGetPhysicalDeviceProperties2) {
     VkPhysicalDeviceVulkan11Properties v11{};
     v11.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES;
+    VkPhysicalDeviceVulkan13Properties v13{};
+    v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES;
     VkPhysicalDeviceProperties2 p2{};
     p2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
     p2.pNext = &v11;
+    if (ctx.device_properties.apiVersion >= VK_API_VERSION_1_3) v11.pNext = &v13;
     vkGetPhysicalDeviceProperties2(info.physical_device, &p2);
     constexpr VkSubgroupFeatureFlags kNeeded =
         VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT;
     ctx.subgroup_size = v11.subgroupSize;
+    // A device may run a compute shader at any subgroup size from min to max (Intel: 8 to 32) unless the pipeline
+    // asks for one: a strand kept in one subgroup must fit the smallest.
+    ctx.subgroup_size_min =
+        v13.minSubgroupSize > 0 ? std::min(v13.minSubgroupSize, v11.subgroupSize) : v11.subgroupSize;
     ctx.subgroup_shuffle_compute = (v11.subgroupSupportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
                                    (v11.subgroupSupportedOperations & kNeeded) == kNeeded;
   }

@@ -20,8 +20,9 @@ struct Context {
   PFN_vkGetPhysicalDeviceProperties get_physical_device_properties = nullptr;
   VkPhysicalDeviceProperties device_properties{};
   // The device's subgroup size (0 when unknown) and whether compute shaders may shuffle and vote in subgroups: the
-  // compliant model's kernel keeps a strand in one subgroup where it fits (sim/fused.hpp).
+  // lane and run kernels keep a strand in one subgroup where it fits the smallest (sim/fused.hpp).
   uint32_t subgroup_size = 0;
+  uint32_t subgroup_size_min = 0;  // the smallest a compute shader may run at (Vulkan 1.3 minSubgroupSize)
   bool subgroup_shuffle_compute = false;
   VmaAllocator allocator = VK_NULL_HANDLE;    // private to TressVK, on the host's device
   uint32_t frames_in_flight = 2;

@@ -161,7 +161,7 @@ std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& in
   if (model::compliant_model_from_environment())
     return {sim::frame_lanes_pass_use(
         terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
-                   sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size,
+                   sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size_min,
                                            ctx.subgroup_shuffle_compute))};
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
@@ -171,7 +171,7 @@ std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& in
     const uint32_t n = inst.asset->rest.vertices_per_strand;
     uint32_t run = sim::run_length_from_environment();
     if (run == 0) run = sim::run_length_for(inst.asset->rest.guide_count, n, path == sim::SimPath::kAuto);
-    if (run != 0 && sim::runs_fit_subgroup(n, run, ctx.subgroup_size, ctx.subgroup_shuffle_compute))
+    if (run != 0 && sim::runs_fit_subgroup(n, run, ctx.subgroup_size_min, ctx.subgroup_shuffle_compute))
       return {sim::frame_runs_pass_use(terms, run)};
   }
   const bool shared = path == sim::SimPath::kFusedShared &&
