@@ -1,7 +1,9 @@
 # cmake -P script (see CMakeLists.txt): tressvk-bench perf on lavapipe with validation + synchronization validation,
-# on both simulation paths: the JSON has every key the issue asks for, the fused path records one dispatch per frame
-# whatever the substeps (240 Hz: 4 or 5), the pass-per-dispatch path one per pass per substep, and both paths' step
-# error is within the reference agreement bar (1e-5 of the median strand length). No timing is asserted (speed
+# on the default path (the run kernel where the strands fit the device's subgroups, else one thread per strand), the
+# one-thread kernel and the pass-per-dispatch path: the JSON has every key the issue asks for and names the kernel
+# that ran, the frame kernels record one dispatch per frame whatever the substeps (240 Hz: 4 or 5), the
+# pass-per-dispatch path one per pass per substep, and every path's step error is within the reference agreement bar
+# (1e-5 of the median strand length). No timing is asserted (speed
 # lives in the bench's numbers, not in tests).
 foreach(var BENCH OUT_DIR)
   if(NOT ${var})
@@ -11,9 +13,13 @@ endforeach()
 file(REMOVE_RECURSE "${OUT_DIR}")
 file(MAKE_DIRECTORY "${OUT_DIR}")
 
-foreach(path fused passes)
+foreach(path default fused passes)
   set(json "${OUT_DIR}/${path}.json")
-  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "TRESSVK_SIM_PATH=${path}"
+  set(env_path "${path}")
+  if(path STREQUAL "default")
+    set(env_path "")
+  endif()
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "TRESSVK_SIM_PATH=${env_path}"
                           "${BENCH}" perf --builtin curly --guides 40 --follows 1 --scene shake --frames 4 --warmup 2
                           --error-frames 2 --validation --json "${json}"
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -32,8 +38,25 @@ foreach(path fused passes)
     endif()
     set(${key} "${value}")
   endforeach()
-  if(path STREQUAL "fused" AND NOT dispatches_per_frame EQUAL 1)
-    message(FATAL_ERROR "perf (fused): ${dispatches_per_frame} dispatches per frame, expected 1")
+  string(JSON kernel ERROR_VARIABLE missing GET "${text}" kernel)
+  if(missing)
+    message(FATAL_ERROR "perf (${path}): key kernel missing from ${json}")
+  endif()
+  if(path STREQUAL "passes")
+    set(expected_kernel "passes")
+  elseif(path STREQUAL "fused")
+    set(expected_kernel "frame")
+  else()
+    set(expected_kernel "frame*")  # frame(runs4), frame(runs8) or frame, by the device's subgroups
+  endif()
+  if(NOT kernel MATCHES "^frame" AND NOT kernel STREQUAL "passes")
+    message(FATAL_ERROR "perf (${path}): kernel '${kernel}', expected ${expected_kernel}")
+  endif()
+  if(NOT path STREQUAL "default" AND NOT kernel STREQUAL expected_kernel)
+    message(FATAL_ERROR "perf (${path}): kernel '${kernel}', expected ${expected_kernel}")
+  endif()
+  if(NOT path STREQUAL "passes" AND NOT dispatches_per_frame EQUAL 1)
+    message(FATAL_ERROR "perf (${path}): ${dispatches_per_frame} dispatches per frame, expected 1")
   endif()
   if(path STREQUAL "passes" AND NOT dispatches_per_frame GREATER 4)
     message(FATAL_ERROR "perf (passes): ${dispatches_per_frame} dispatches per frame, expected one per pass per substep")
@@ -41,5 +64,5 @@ foreach(path fused passes)
   if(step_error_max_rel GREATER 1e-5)
     message(FATAL_ERROR "perf (${path}): step error ${step_error_max_rel} over 1e-5")
   endif()
-  message(STATUS "${path}: ${dispatches_per_frame} dispatches/frame, step error ${step_error_max_rel}")
+  message(STATUS "${path} (${kernel}): ${dispatches_per_frame} dispatches/frame, step error ${step_error_max_rel}")
 endforeach()
