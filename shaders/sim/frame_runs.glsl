@@ -9,11 +9,12 @@
 // crosses to the next lane once per round (a subgroup shuffle), so the walks' instructions are shared by the
 // subgroup's 32 / RL strands. Local shape runs its iterations in pairs, the second walk one round (one lane) behind
 // the first, so that each of its steps reads vertex v + 1 as the first walk left it. Every step is the one-thread
-// kernel's arithmetic in its order (local_shape_lane_step, wind, sweep_step), so both give the same float results.
+// kernel's arithmetic in its order (local_shape_step's, wind_step's, sweep_step), so both give the same float results.
 //
-// The per-lane arrays are indexed by the unrolled run loops' constants only (the state macros below read tvk_k,
-// which each unrolled iteration sets), so they stay in registers. Strands pinned at their tip take the one-thread
-// kernel (the host chooses). The host uses this kernel where RL lanes fit the subgroup and compute shaders shuffle.
+// The per-lane arrays are indexed by constants only, so they stay in registers: the unrolled run loops' (the state
+// macros below read tvk_k, which each unrolled iteration sets), or index 0, 1 and RUN - 1 of local shape's loop, which
+// turns the run instead (turn_run_shape). Strands pinned at their tip take the one-thread kernel (the host chooses).
+// The host uses this kernel where RL lanes fit the smallest subgroup the device may run and compute shaders shuffle.
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_shuffle : require
 #extension GL_KHR_shader_subgroup_vote : require
@@ -93,7 +94,7 @@ vec4 runs_root_frame(uint g, uint b) {
   return f;
 }
 
-// Local shape's step (local_shape_step; the same as the lane kernel's local_shape_lane_step).
+// Local shape's step: local_shape_step's arithmetic, with the walk's state passed in.
 void local_shape_run_step(bool turns, float rest_in, vec3 edge, float s, inout vec4 f, vec3 a, inout vec4 p,
                           inout vec4 n) {
   if (turns) f = frame_align(f, p.xyz - a, rest_in);
