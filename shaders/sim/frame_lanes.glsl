@@ -146,20 +146,9 @@ void finish_lanes(uint g, uint b, uint v, GroupParams gp, bool write_tangents) {
     ok = finite3(L_pos.xyz) && finite3(q);
   }
   if (lanes_min(v, ok ? 1.0 : 0.0) < 0.5) {
-    // As the serial pass: the rest pose, its history carried back by this step's rigid motion.
     lanes_put(v, L_prev, vec4(0.0), vec4(0.0));
     vec3 q0 = lanes_get0(0u).xyz;
-    if (!finite3(q0)) q0 = vec3(0.0);
-    if (vert) {
-      vec4 back = skin_delta(g);
-      back = vec4(-back.xyz, back.w);
-      float inv_mass = strand_rigid(g, gp) ? 0.0 : rest_pos[b + v * TVK_BLOCK].w;
-      vec3 r = skin_offset(g, v);
-      vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
-      L_pos = vec4(r, inv_mass);
-      L_prev = y;
-      L_prevprev = y;
-    }
+    if (vert) reset_vertex(g, b, v, q0, reset_back(g), strand_rigid(g, gp));
     if (v == 0u) atomicAdd(counters[pc.counter_index], 1u);
   }
 

@@ -255,20 +255,11 @@ void runs_length(uint g, uint b, GroupParams gp, bool write_tangents) {
   }
   if (runs_min(ok ? 1.0 : 0.0) < 0.5) {
     vec3 q0 = from_lane(R_prev[0], 0u).xyz;
-    if (!finite3(q0)) q0 = vec3(0.0);
-    vec4 back = skin_delta(g);
-    back = vec4(-back.xyz, back.w);
+    vec4 back = reset_back(g);
     bool rigid = strand_rigid(g, gp);
     [[unroll]] for (uint k = 0u; k < RUN; ++k) {
-      uint v = vtx(k);
-      if (v < N) {
-        float inv_mass = rigid ? 0.0 : rest_pos[b + v * TVK_BLOCK].w;
-        vec3 r = skin_offset(g, v);
-        vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
-        R_pos[k] = vec4(r, inv_mass);
-        R_prev[k] = y;
-        R_prevprev[k] = y;
-      }
+      tvk_k = k;
+      if (vtx(k) < N) reset_vertex(g, b, vtx(k), q0, back, rigid);
     }
     if (tvk_r == 0u) atomicAdd(counters[pc.counter_index], 1u);
   }

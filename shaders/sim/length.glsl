@@ -296,27 +296,35 @@ vec4 sweep_step(inout SweepWalk sw, uint b, uint v, vec4 n, vec3 pn, float rest)
   return p;
 }
 
+// The reset of a strand found non-finite, vertex by vertex (every kernel's): the rest pose, its history carried back
+// by this step's rigid motion (back = the inverse of the strand's skinning delta, reset_back), so the strand moves on
+// with the head (VSP assumes that integration carries the head's previous motion), from q0, the root's history (zero
+// where that is not finite).
+vec4 reset_back(uint g) {
+  vec4 back = skin_delta(g);
+  return vec4(-back.xyz, back.w);
+}
+void reset_vertex(uint g, uint b, uint v, vec3 q0, vec4 back, bool rigid) {
+  if (!finite3(q0)) q0 = vec3(0.0);
+  float inv_mass = rigid ? 0.0 : rest_pos[b + v * TVK_BLOCK].w;
+  vec3 r = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
+  vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
+  TVK_POS(b + v * TVK_BLOCK) = vec4(r, inv_mass);
+  TVK_PREV(b + v * TVK_BLOCK) = y;
+  TVK_PREVPREV(b + v * TVK_BLOCK) = y;
+}
+
 // A strand found non-finite at the end of a step is reset, counted and its tangents written again.
 void length_reset_if_not_finite(uint g, uint b, bool ok, bool write_tangents, float min_len) {
   if (!ok) {
-    // The history is the rest pose carried back by this step's rigid motion, so the strand moves on with the head
-    // (VSP assumes that integration carries the head's previous motion); a non-finite root history falls back to
-    // zero velocity.
     vec3 q0 = TVK_PREV(b).xyz;
-    if (!finite3(q0)) q0 = vec3(0.0);
-    vec4 back = skin_delta(g);
-    back = vec4(-back.xyz, back.w);
+    vec4 back = reset_back(g);
     bool rigid = strand_rigid(g, guide_params(g));
     for (uint v = 0u; v < N; ++v) {
-      float inv_mass = rigid ? 0.0 : rest_pos[b + v * TVK_BLOCK].w;
-      vec3 r = skin_offset(g, v);  // relative to the anchor, where the root's rest pose is
-      vec4 y = vec4(q0 + quat_rotate(back, r), inv_mass);
-      TVK_POS(b + v * TVK_BLOCK) = vec4(r, inv_mass);
-      TVK_PREV(b + v * TVK_BLOCK) = y;
-      TVK_PREVPREV(b + v * TVK_BLOCK) = y;
+      reset_vertex(g, b, v, q0, back, rigid);
 #ifdef TVK_FRAME_KERNEL
       // The fused kernel stores the last substep's second history as it is made (frame.glsl): this one replaces it.
-      if (write_tangents && TVK_HAS(TVK_FEATURE_VSP)) prevprev[b + v * TVK_BLOCK] = y;
+      if (write_tangents && TVK_HAS(TVK_FEATURE_VSP)) prevprev[b + v * TVK_BLOCK] = TVK_PREVPREV(b + v * TVK_BLOCK);
 #endif
     }
     atomicAdd(counters[pc.counter_index], 1u);

@@ -143,30 +143,30 @@ TvkResult init_context(Context& ctx) {
   fault::install(info.next, ctx.vk);
   ctx.get_physical_device_properties = vkGetPhysicalDeviceProperties;
   ctx.get_physical_device_properties(info.physical_device, &ctx.device_properties);
-  if (ctx.device_properties.apiVersion >= VK_API_VERSION_1_1 && vkGetPhysicalDeviceProperties2) {
-    VkPhysicalDeviceVulkan11Properties v11{};
-    v11.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES;
+  if (ctx.device_properties.apiVersion < VK_API_VERSION_1_3)
+    return ctx.fail(TVK_ERROR_MISSING_FEATURE, "tressvk_create_context: device '%s' supports Vulkan %u.%u; TressVK needs 1.3",
+                    ctx.device_properties.deviceName, VK_API_VERSION_MAJOR(ctx.device_properties.apiVersion),
+                    VK_API_VERSION_MINOR(ctx.device_properties.apiVersion));
+  if (vkGetPhysicalDeviceProperties2) {
+    // Vulkan 1.3 is checked above, so both property structs are there.
     VkPhysicalDeviceVulkan13Properties v13{};
     v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES;
+    VkPhysicalDeviceVulkan11Properties v11{};
+    v11.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES;
+    v11.pNext = &v13;
     VkPhysicalDeviceProperties2 p2{};
     p2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
     p2.pNext = &v11;
-    if (ctx.device_properties.apiVersion >= VK_API_VERSION_1_3) v11.pNext = &v13;
     vkGetPhysicalDeviceProperties2(info.physical_device, &p2);
     constexpr VkSubgroupFeatureFlags kNeeded =
         VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT;
     ctx.subgroup_size = v11.subgroupSize;
     // A device may run a compute shader at any subgroup size from min to max (Intel: 8 to 32) unless the pipeline
     // asks for one: a strand kept in one subgroup must fit the smallest.
-    ctx.subgroup_size_min =
-        v13.minSubgroupSize > 0 ? std::min(v13.minSubgroupSize, v11.subgroupSize) : v11.subgroupSize;
+    ctx.subgroup_size_min = std::min(v13.minSubgroupSize, v11.subgroupSize);
     ctx.subgroup_shuffle_compute = (v11.subgroupSupportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0 &&
                                    (v11.subgroupSupportedOperations & kNeeded) == kNeeded;
   }
-  if (ctx.device_properties.apiVersion < VK_API_VERSION_1_3)
-    return ctx.fail(TVK_ERROR_MISSING_FEATURE, "tressvk_create_context: device '%s' supports Vulkan %u.%u; TressVK needs 1.3",
-                    ctx.device_properties.deviceName, VK_API_VERSION_MAJOR(ctx.device_properties.apiVersion),
-                    VK_API_VERSION_MINOR(ctx.device_properties.apiVersion));
 
   // VMA calls Vulkan through this context's table (so fault-injection builds see its calls too).
   VmaVulkanFunctions functions{};

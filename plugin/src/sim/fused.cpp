@@ -55,6 +55,14 @@ uint32_t lanes_for(uint32_t vertices_per_strand, uint32_t at_least) {
   while (lanes < vertices_per_strand) lanes *= 2;
   return lanes;
 }
+// Invocations of a strand in runs of run_length vertices.
+uint32_t run_lanes(uint32_t vertices_per_strand, uint32_t run_length) {
+  return lanes_for((vertices_per_strand + run_length - 1) / run_length, 1);
+}
+// A strand of `lanes` invocations fits the subgroup, and compute shaders may shuffle and vote.
+bool strand_fits_subgroup(uint32_t lanes, uint32_t subgroup_size, bool shuffle_compute) {
+  return shuffle_compute && subgroup_size >= 4 && (subgroup_size & (subgroup_size - 1)) == 0 && lanes <= subgroup_size;
+}
 // Not a shader feature: keeps the two variants' pipelines apart in the context's pipeline cache (FEATURES ignores it).
 constexpr uint32_t kSharedVariantBit = 1u << 15;  // below bit 16: the cache key puts capsules at bit 48
 
@@ -106,8 +114,7 @@ LanesBackend lanes_backend_from_environment() {
 }
 
 bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bool shuffle_compute) {
-  return shuffle_compute && subgroup_size >= 4 && (subgroup_size & (subgroup_size - 1)) == 0 &&
-         lanes_for(vertices_per_strand, 1) <= subgroup_size;
+  return strand_fits_subgroup(lanes_for(vertices_per_strand, 1), subgroup_size, shuffle_compute);
 }
 
 PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
@@ -129,14 +136,9 @@ uint32_t run_length_from_environment() {
   return run;
 }
 
-uint32_t run_lanes(uint32_t vertices_per_strand, uint32_t run_length) {
-  return lanes_for((vertices_per_strand + run_length - 1) / run_length, 1);
-}
-
 bool runs_fit_subgroup(uint32_t vertices_per_strand, uint32_t run_length, uint32_t subgroup_size,
                        bool shuffle_compute) {
-  return shuffle_compute && subgroup_size >= 4 && (subgroup_size & (subgroup_size - 1)) == 0 &&
-         run_lanes(vertices_per_strand, run_length) <= subgroup_size;
+  return strand_fits_subgroup(run_lanes(vertices_per_strand, run_length), subgroup_size, shuffle_compute);
 }
 
 uint32_t run_length_for(uint32_t guide_count, uint32_t vertices_per_strand, bool fall_back) {

@@ -155,8 +155,9 @@ struct InstanceWork {
   std::array<uint32_t, 3> dynamic_offsets{};
 };
 
-// The passes a frame of this instance records on the process's simulation path (TRESSVK_SIM_PATH): the fused frame
-// kernel (sim/fused.hpp; the shared-memory variant only where the strand block fits), or one pass per dispatch.
+// The passes a frame of this instance records (sim/fused.hpp): the compliant model's lane kernel, or on the process's
+// simulation path (TRESSVK_SIM_PATH) the run kernel, the one-thread kernel (its shared-memory variant only where the
+// strand block fits) or one pass per dispatch.
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
   if (model::compliant_model_from_environment())
     return {sim::frame_lanes_pass_use(
