@@ -68,7 +68,7 @@ void main() {
       const float behind = (depth - uintBitsToFloat(dom[texel])) / spacing;
       uint layer = 0u;
       while (layer + 1u < kDomLayers && behind >= kDomEdge[layer + 1u]) ++layer;
-      atomicAdd(dom[texels * (1u + layer) + texel], uint(cover * kDomUnit + 0.5));
+      atomicAdd(dom[texels + kDomLayers * texel + layer], uint(cover * kDomUnit + 0.5));
     }
   }
 }

@@ -30,11 +30,12 @@ float shadow_transmittance(vec3 p, Material m) {
       hair_front = min(hair_front, front);
       const float behind = (here - front) / spacing - 1.0;  // one fibre of bias: a fibre never shadows itself
       if (behind <= 0.0) continue;
+      const uvec4 layers = dom_layers[texels / 4u + texel];  // the texel's kDomLayers (4) layers in one load
       for (uint k = 0u; k < kDomLayers; ++k) {
         const float lo = kDomEdge[k], hi = kDomEdge[k + 1u];
         if (behind <= lo) break;
         const float part = k + 1u == kDomLayers ? 1.0 : clamp((behind - lo) / (hi - lo), 0.0, 1.0);
-        density += part * float(dom[texels * (1u + k) + texel]) / kDomUnit;
+        density += part * float(layers[k]) / kDomUnit;
       }
     }
   }

@@ -52,6 +52,7 @@ constexpr uint32_t kSplitSlots = 65535;
 constexpr uint32_t kCounterCount = 8;
 constexpr uint32_t kDomSize = 512;   // deep opacity map texels per side (raster_layout.glsl)
 constexpr uint32_t kDomLayers = 4;
+static_assert(kDomLayers == 4, "shade.glsl reads a texel's layers as one uvec4 (raster_layout.glsl, dom_layers)");
 constexpr uint32_t kFlagShadowed = 4;
 constexpr uint32_t kFlagPerFragment = 8;  // raster_layout.glsl: TVK_RASTER_SHADE_PER_FRAGMENT
 constexpr uint32_t kFlagSplitDense = 16;  // raster_layout.glsl: TVK_RASTER_SPLIT_AS_DENSE
