@@ -10,6 +10,10 @@ layout(local_size_x = 64) in;
 layout(constant_id = 0) const uint kScatter = 0u;
 #include "render/compute/raster_layout.glsl"
 
+// Slack of the footprint test, pixels: far more than the float rounding of fine.comp's exact test (1e-3 px at 4K), so
+// a tile whose pixels the segment covers is never skipped.
+const float kBinSlack = 1.0 / 16.0;
+
 void main() {
   if (kScatter != 0u) {
     // Also lists the tiles with entries for the fine pass, each at its weight bucket's cursor (scan.comp placed
@@ -40,15 +44,28 @@ void main() {
   const uvec2 t1 = min(uvec2(ceil(hi)) / kTile, pc.size.zw - 1u);
   const float zmin = min(a.z, b.z);
   const uint tiles_count = pc.size.z * pc.size.w;
-  const float tile_radius = 0.5 * sqrt(2.0) * float(kTile) + reach;
+  // The footprint: the rectangle along the segment, reach to either side, no caps (fine.comp covers a pixel only
+  // where its centre projects onto the segment, t in [0, 1], within half the width plus half a pixel of it). A
+  // tile is taken when the rectangle meets the square of its pixel centres (half-size 3.5 px around the tile
+  // centre): separating axes x, y, along and across the segment, each side widened by kBinSlack.
+  const float len = sqrt(len2);
+  const vec2 e = d / len, nrm = vec2(-e.y, e.x);
+  const float half_centres = 0.5 * float(kTile - 1u);
+  const vec2 ext = abs(nrm) * reach + (half_centres + kBinSlack);  // the rectangle's half-width + the square's, on x, y
+  const vec2 mid = 0.5 * (a.xy + b.xy);
+  const vec2 half_d = 0.5 * abs(d);
+  const float along_a = dot(a.xy, e), across_a = dot(a.xy, nrm);
+  const float square_e = half_centres * (abs(e.x) + abs(e.y)) + kBinSlack;  // the square's half-extent on e and nrm
   uint binned = 0u;
   for (uint ty = t0.y; ty <= t1.y; ++ty) {
     for (uint tx = t0.x; tx <= t1.x; ++tx) {
       const uint t = ty * pc.size.z + tx;
       if (zmin > uintBitsToFloat(tiles[3u * tiles_count + t])) continue;  // behind the host depth everywhere
       const vec2 c = (vec2(tx, ty) + 0.5) * float(kTile);
+      if (any(greaterThan(abs(c - mid), half_d + ext))) continue;  // separated on x or y
+      const float ce = dot(c, e) - along_a, cn = dot(c, nrm) - across_a;
+      if (ce < -square_e || ce > len + square_e || abs(cn) > reach + square_e) continue;  // along or across
       const float s = clamp(dot(c - a.xy, d) / len2, 0.0, 1.0);
-      if (length(c - (a.xy + s * d)) > tile_radius) continue;  // the footprint misses this tile
       if (kScatter == 0u) {
         atomicAdd(tiles[t], 1u);
         ++binned;
