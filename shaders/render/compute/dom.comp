@@ -49,7 +49,19 @@ void main() {
   const Material m = dc.materials[group];
   const float spacing = max(m.fiber.x * m.shape.y, 1e-7);  // metres of depth per fibre
   const uint texels = kDomSize * kDomSize;
+  // A segment's end is the next segment's start: only the strand's last segment samples its end, and in pass 1
+  // a start adds the half-sample the previous segment's end would have added (a quarter to a third fewer samples
+  // and atomics; the same map in pass 0, the same densities to the fixed point's rounding in pass 1).
+  const bool last = i + 2u >= n;
+  float prev_piece = 0.0;
+  if (kPass == 1u && i > 0u) {
+    const LightPoint p = to_light(strand, i - 1u);
+    const float plen = length(a.texel - p.texel);
+    const uint psteps = min(uint(ceil(plen)), 64u);
+    prev_piece = psteps == 0u ? 0.0 : plen / float(psteps);
+  }
   for (uint k = 0u; k <= steps; ++k) {
+    if (k == steps && steps > 0u && !last) break;
     const float t = steps == 0u ? 0.0 : float(k) / float(steps);
     const vec2 x = mix(a.texel, b.texel, t);
     if (any(lessThan(x, vec2(0.0))) || any(greaterThanEqual(x, vec2(kDomSize)))) continue;
@@ -62,7 +74,8 @@ void main() {
       const float along = float(i + uint(t > 0.5)) / float(n - 1u);
       const float width = m.shape.y * mix(1.0, m.shape.z, along) * dc.lod.x * mix(a.per_metre, b.per_metre, t);
       // Covered fraction of the texel: width (texels) x length per sample (texels), ends counted half.
-      const float piece = (steps == 0u ? 0.0 : len / float(steps)) * ((k == 0u || k == steps) ? 0.5 : 1.0);
+      float piece = (steps == 0u ? 0.0 : len / float(steps)) * ((k == 0u || k == steps) ? 0.5 : 1.0);
+      if (k == 0u) piece += 0.5 * prev_piece;
       const float cover = min(width, 1.0) * piece;
       if (cover <= 0.0) continue;
       const float behind = (depth - uintBitsToFloat(dom[texel])) / spacing;

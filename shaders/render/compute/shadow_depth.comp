@@ -41,7 +41,9 @@ void main() {
   const float len = length(d);
   const vec2 across = len > 1e-6 ? vec2(-d.y, d.x) / len : vec2(1.0, 0.0);
   const uint steps = min(uint(ceil(len)), 256u);
+  const bool last = i + 2u >= n;  // the segment's end is the next one's start: only the last segment samples it
   for (uint k = 0u; k <= steps; ++k) {
+    if (k == steps && steps > 0u && !last) break;
     const float t = steps == 0u ? 0.0 : float(k) / float(steps);
     const vec2 x = mix(a.xy, b.xy, t);
     const float z = mix(a.z, b.z, t);
