@@ -425,6 +425,26 @@ TEST_CASE("VSP follows the reference at any root pin count", "[plugin][simulatio
   CHECK(r.stretch_max <= kStretchBound);
 }
 
+TEST_CASE("follow hairs and root tangents follow the reference at any root pin count", "[plugin][simulation]") {
+  // A guide's root frame (where its follow hairs hang and the root tangent's fallback) turns with the direction of its
+  // first segment when vertex 1 is free, i.e. with fewer than two pinned root vertices. The compliant model's lane
+  // kernel once took that direction from each lane's own vertex instead of vertices 0 and 1 (exact only with two
+  // pinned): guides with 0, 1 and 3 pinned root vertices, two follow hairs each, 8 vertices (one strand per subgroup
+  // on lavapipe's 8 lanes, the lane kernel's subgroup variant on the compliant model's ctest entry), shaken.
+  const uint32_t pins[] = {0u, 1u, 3u};
+  baker::BuiltinGroomOptions options;
+  options.guide_count = 6;
+  options.follow_per_guide = 2;
+  options.vertices_per_strand = 8;
+  asset::HairAsset hair = baker::make_builtin_groom("curly", options);
+  const uint32_t n = hair.vertices_per_strand;
+  for (uint32_t g = 0; g < hair.guide_count(); ++g)
+    for (uint32_t v = 0; v < n; ++v) hair.rest_positions[size_t{g} * n + v][3] = v < pins[g % 3] ? 0.0f : 1.0f;
+  const SceneResult r = run_scene(hair, "shake", 30);
+  INFO("step error " << r.step_error_max << ", stretch " << r.stretch_max << ", tangent error " << r.tangent_error_max);
+  check_scene(r);
+}
+
 TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][simulation]") {
   // The TressFX defect where instances share one constant buffer must not exist: two instances of one asset with
   // different stiffness, recorded in one simulate call, each match their own reference.
