@@ -7,7 +7,7 @@
 //
 // The host uploads the compliant constants in GroupParams: global_stiffness = the global spring's fraction at this h,
 // reserved0 = the bending compliance alpha / h^2 at the calibration edge (31 edges per strand), reserved1 = the
-// bending damping tau / h.
+// bending damping tau / h at the calibration edge (an edge of relative length rel takes it times min(1 / rel^2, 4)).
 #ifndef TRESSVK_SIM_LANES_COMPLIANT_GLSL
 #define TRESSVK_SIM_LANES_COMPLIANT_GLSL
 
@@ -120,7 +120,7 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
   bool row = v >= 1u && v + 1u < N;
   float rel = row ? kCalibrationSegments * lr.len / strand_rest_length(g) : 0.0;
   float at = gp.reserved0 * rel * rel * rel;
-  float gm = gp.reserved1;
+  float gm = row ? gp.reserved1 * min(1.0 / (rel * rel), 4.0) : 0.0;
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);  // this lane's skinned rest edge
   for (uint it = 0u; it < gp.local_iterations; ++it) {

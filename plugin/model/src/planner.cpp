@@ -503,7 +503,10 @@ constexpr double kBendCalibration = 5.4;
 // amplified rounding by 1e5 in a second; 5 ms holds 1 and 2 iterations, the curly rest pose and 128-vertex strands at
 // rounding level, lets upright strands settle and leaves the static sag unchanged, but is too little for tight curls
 // under shake (hard case 3 needs >= 10 ms, the 1/100 and 100x checks <= 10 ms): no single value serves both
-// (docs/accuracy.md, "Rounding amplification").
+// (docs/accuracy.md, "Rounding amplification"). So this is the time at the calibration edge (31 edges a strand); an
+// edge of relative length r = 31 a / L takes it times min(1 / r^2, 4) (the reference's local_shape_compliant and
+// lanes_compliant.glsl): 5 ms at N 32 and fewer vertices, 20 ms from N 64 on, where with 5 ms curly strands at rest
+// fluttered and stretched (0.71 at N 64) and tight curls failed; more than 20 ms failed 128-vertex strands in `run`.
 constexpr double kBendDampingTime = 0.005;
 }  // namespace
 
