@@ -381,16 +381,24 @@ TEST_CASE("analytic: an upright strand falls over and settles (compliant model)"
 // shortest segment, so one 0.1 um segment held every step of its strand to 0.05 um and the strand's other segments
 // stayed stretched by up to 75 %; now the reach is measured against segments of at least half the mean segment:
 // worst 4.4e-3. The bar is the hard cases' 5 % (reference::stretch leaves the sub-micrometre segments out).
-TEST_CASE("analytic: the compliant length solve holds strands with sub-micrometre segments", "[reference][analytic]") {
-  const auto a = tressvk::reference::with_near_duplicate_vertices(tvk_test::groom("straight", 8));
+namespace {
+// The worst stretch (reference::stretch) of the groom on the compliant model over `frames` frames of `scene`.
+double compliant_worst_stretch(const tressvk::asset::HairAsset& a, const char* scene, uint32_t frames) {
   tressvk::reference::Simulator sim = tvk_test::make_sim(a);
   sim.set_model(LengthModel::kCompliant);
   const auto geo = tressvk::reference::scene_geometry(sim.rest());
   double worst = 0;
-  for (uint32_t f = 0; f < 60; ++f) {
-    sim.advance(tressvk::reference::scene_frame("shake", f, geo));
+  for (uint32_t f = 0; f < frames; ++f) {
+    sim.advance(tressvk::reference::scene_frame(scene, f, geo));
     worst = std::max(worst, tressvk::reference::stretch(sim.positions().first(sim.rest().rest_pos.size()), sim.rest()).max);
   }
+  return worst;
+}
+}  // namespace
+
+TEST_CASE("analytic: the compliant length solve holds strands with sub-micrometre segments", "[reference][analytic]") {
+  const auto a = tressvk::reference::with_near_duplicate_vertices(tvk_test::groom("straight", 8));
+  const double worst = compliant_worst_stretch(a, "shake", 60);
   INFO("worst stretch over 60 frames of shake: " << worst);
   CHECK(worst <= 0.05);
 }
@@ -406,15 +414,7 @@ TEST_CASE("analytic: the compliant length solve holds strands with sub-micrometr
 TEST_CASE("analytic: the curly groom at rest keeps its length at 16 to 128 vertices (compliant model)",
           "[reference][analytic]") {
   for (uint32_t n : {16u, 48u, 64u, 128u}) {
-    const auto a = tvk_test::groom("curly", 8, 0, n);
-    tressvk::reference::Simulator sim = tvk_test::make_sim(a);
-    sim.set_model(LengthModel::kCompliant);
-    const auto geo = tressvk::reference::scene_geometry(sim.rest());
-    double worst = 0;
-    for (uint32_t f = 0; f < 120; ++f) {
-      sim.advance(tressvk::reference::scene_frame("settle", f, geo));
-      worst = std::max(worst, tressvk::reference::stretch(sim.positions().first(sim.rest().rest_pos.size()), sim.rest()).max);
-    }
+    const double worst = compliant_worst_stretch(tvk_test::groom("curly", 8, 0, n), "settle", 120);
     INFO("N " << n << ": worst stretch over 120 frames at rest " << worst);
     CHECK(worst <= 1e-3);
   }
