@@ -12,6 +12,7 @@
 #define TRESSVK_SIM_LANES_COMPLIANT_GLSL
 
 const float kCalibrationSegments = 31.0;
+const float kBendDampingGrowthCap = 4.0;  // the reference's compliant_bend_damping_edge
 const uint kCompliantExtraNewton = 4u;
 const float kCompliantStretchTol = 1e-3;
 const float kCompliantReachFloorRel = 0.5;
@@ -120,7 +121,7 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
   bool row = v >= 1u && v + 1u < N;
   float rel = row ? kCalibrationSegments * lr.len / strand_rest_length(g) : 0.0;
   float at = gp.reserved0 * rel * rel * rel;
-  float gm = row ? gp.reserved1 * min(1.0 / (rel * rel), 4.0) : 0.0;
+  float gm = row ? gp.reserved1 * min(1.0 / (rel * rel), kBendDampingGrowthCap) : 0.0;
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);  // this lane's skinned rest edge
   for (uint it = 0u; it < gp.local_iterations; ++it) {

@@ -214,6 +214,14 @@ double compliant_bend_alpha(double s_step, double edge, double strand_length, do
   const double rel = kCalibrationSegments * edge / strand_length;
   return compliant_bend_alpha_base(s_step, h) * (rel * rel * rel);
 }
+
+// Local shape's damping gamma = tau / h of one edge: the time at the calibration edge (planner.cpp, kBendDampingTime)
+// times min((31 a / L)^-2, kBendDampingGrowthCap); lanes_compliant.glsl alike.
+constexpr double kBendDampingGrowthCap = 4.0;
+double compliant_bend_damping_edge(double edge, double strand_length, double h) {
+  const double rel = kCalibrationSegments * edge / strand_length;
+  return compliant_bend_damping(h) * std::min(1.0 / (rel * rel), kBendDampingGrowthCap);
+}
 }  // namespace
 
 void Simulator::integrate(const Substep& st) {
@@ -369,9 +377,7 @@ void Simulator::local_shape_compliant(const Substep& st) {
           const double at = compliant_bend_alpha(gp.local_stiffness, rest_.rest_length[b + v], rest_.strand_length[g], st.h);
           const Vec3 c = pos_[b + v + 1] - pos_[b + v] - targets_[v];
           // The damping term (XPBD): gamma on the edge's change over the step, (1 + gamma) on D W D^T.
-          // The damping time grows as the edge shrinks (planner.cpp, kBendDampingTime): min(1 / rel^2, 4).
-          const double rel = kCalibrationSegments * rest_.rest_length[b + v] / rest_.strand_length[g];
-          const double gm = compliant_bend_damping(st.h) * std::min(1.0 / (rel * rel), 4.0);
+          const double gm = compliant_bend_damping_edge(rest_.rest_length[b + v], rest_.strand_length[g], st.h);
           const Vec3 vel = (pos_[b + v + 1] - prev_[b + v + 1]) - (pos_[b + v] - prev_[b + v]);
           const double sub = v > 1 ? -(1.0 + gm) * wa : 0.0;
           const double sup = v + 2 < n ? -(1.0 + gm) * wb : 0.0;
