@@ -75,19 +75,26 @@ void cantilever() {
 // Richardson-style halving: the trajectory distance between step rates r and 2r (rms and max over 30 frames and
 // every guide vertex, / median length), up to 3840 Hz on the CPU, per groom and scene, as a chain (shape terms off)
 // and at the defaults.
+// TVK_FRAMES (default 30) frames per run, rates from TVK_RATE (default 240) Hz doubling up to 3840, TVK_GROOM (both
+// grooms by default).
 void convergence() {
-  std::printf("# trajectory distance between rate r and 2r over 30 frames (/ median strand length)\n");
+  const uint32_t frames = std::getenv("TVK_FRAMES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_FRAMES"))) : 30u;
+  const double first = std::getenv("TVK_RATE") ? std::atof(std::getenv("TVK_RATE")) : 240.0;
+  const char* only = std::getenv("TVK_GROOM");
+  std::printf("# trajectory distance between rate r and 2r over %u frames (/ median strand length)\n", frames);
   std::printf("groom,scene,params,rate_hz,rms,max\n");
   for (const char* groom : {"straight", "curly"})
     for (const char* scene : {"settle", "shake"})
       for (int chain_only = 1; chain_only >= 0; --chain_only) {
+        if (only && std::strcmp(only, groom) != 0) continue;
         TvkSimParams p = chain_only ? chain_params() : TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT;
         if (chain_only) p.damping = 0.08f;
         const auto a = tvk_test::groom(groom, 8);
         double median = 0;
         std::vector<std::vector<std::vector<Vec3>>> runs;
-        const std::vector<double> rates = {240.0, 480.0, 960.0, 1920.0, 3840.0};
-        for (double r : rates) runs.push_back(trajectory(a, p, r, scene, 30, &median, g_model));
+        std::vector<double> rates;
+        for (double r = first; r <= 3840.0; r *= 2.0) rates.push_back(r);
+        for (double r : rates) runs.push_back(trajectory(a, p, r, scene, frames, &median, g_model));
         for (size_t k = 0; k + 1 < runs.size(); ++k) {
           const auto e = tressvk::reference::trajectory_error(runs[k], runs[k + 1], median);
           std::printf("%s,%s,%s,%.0f,%.3e,%.3e\n", groom, scene, chain_only ? "chain" : "defaults", rates[k], e.rms_rel,
@@ -177,8 +184,8 @@ void looks() {
 // Sensitivity to rounding: the same groom and scene twice on the double reference, the second with every free guide
 // vertex's position moved by TVK_EPS (default 1e-7) of the median strand length in a pseudo-random direction after
 // the first frame; the largest distance between the two (/ median length) every 6 frames. A stable model keeps it
-// near TVK_EPS; float rounding on the GPU is such a perturbation every step. TVK_GROOM (straight), TVK_SCENE (shake),
-// TVK_N (32), TVK_GUIDES (16), TVK_FRAMES (60) pick the setup.
+// near TVK_EPS; float rounding on the GPU is such a perturbation every step. TVK_GROOM (straight; neardup: hard case
+// 8's groom), TVK_SCENE (shake), TVK_N (32), TVK_GUIDES (16), TVK_FRAMES (60) pick the setup.
 void perturb() {
   const char* groom_name = std::getenv("TVK_GROOM") ? std::getenv("TVK_GROOM") : "straight";
   const char* scene = std::getenv("TVK_SCENE") ? std::getenv("TVK_SCENE") : "shake";
@@ -186,7 +193,10 @@ void perturb() {
   const uint32_t guides = std::getenv("TVK_GUIDES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_GUIDES"))) : 16u;
   const uint32_t frames = std::getenv("TVK_FRAMES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_FRAMES"))) : 60u;
   const double eps = std::getenv("TVK_EPS") ? std::atof(std::getenv("TVK_EPS")) : 1e-7;
-  const auto a = tvk_test::groom(groom_name, guides, 0, n);
+  // TVK_GROOM=neardup: hard case 8's groom (straight strands with sub-micrometre segments).
+  const bool neardup = std::strcmp(groom_name, "neardup") == 0;
+  const auto a = neardup ? tressvk::reference::with_near_duplicate_vertices(tvk_test::groom("straight", guides, 0, n))
+                         : tvk_test::groom(groom_name, guides, 0, n);
   TvkSimParams p = tvk_test::default_params();
   if (const char* e = std::getenv("TVK_LOCAL")) p.local_stiffness = static_cast<float>(std::atof(e));
   if (const char* e = std::getenv("TVK_GLOBAL")) p.global_stiffness = static_cast<float>(std::atof(e));
