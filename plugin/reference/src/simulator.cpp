@@ -1,7 +1,9 @@
 #include "tressvk/reference/simulator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -110,8 +112,9 @@ void Simulator::simulate(const FramePlan& plan) {
     integrate(st);
     if (any_vsp) vsp(st);
     if (any_local) {
-      if (length_model_ == LengthModel::kCompliant) {
-        local_shape_compliant(st);
+      if (compliant_model()) {
+        if (length_model_ == LengthModel::kConservative) local_shape_conservative(st);
+        else local_shape_compliant(st);
       } else {
         local_shape(st);
       }
@@ -215,6 +218,21 @@ double compliant_bend_alpha(double s_step, double edge, double strand_length, do
   return compliant_bend_alpha_base(s_step, h) * (rel * rel * rel);
 }
 
+// kConservative's compliance per edge: its constraints carry the bending moment (angle at v = alpha M / a^2), so
+// a^4 / B keeps the sag independent of N; kConservativeCalibration puts the cantilever's sag (L 0.2 m, 2 root vertices
+// pinned, defaults, 240 Hz, 2 iterations, 32 vertices) at kCompliant's (tressvk_accuracy_probe cantilever).
+constexpr double kConservativeCalibration = 0.080;
+// kConservative's damping: kCompliant's damping time per edge times this (1.5 ms at the calibration edge), on the
+// constraints' own rate G (x - prev) (internal: a rigid turn is not damped). kCompliant needs 5 ms to take out the
+// energy its held targets put in; here the curly groom's trajectory converges as h halves with 1.5 ms, and more
+// amplifies rounding on the straight groom's upright strands (a 1e-7 perturbation after 60 frames of shake: 1.1e-7 at
+// 0.3, 3.8e-7 at 0.5 with 1.5e-6 on the way, 1.4e-5 at 0.7, 1.4e-4 at 1; tressvk_accuracy_probe perturb).
+constexpr double kConservativeDampingScale = 0.3;
+double conservative_bend_alpha(double s_step, double edge, double strand_length, double h) {
+  const double rel = kCalibrationSegments * edge / strand_length;
+  return kConservativeCalibration * compliant_bend_alpha_base(s_step, h) * (rel * rel * rel * rel);
+}
+
 // Local shape's damping gamma = tau / h of one edge: the time at the calibration edge (planner.cpp, kBendDampingTime)
 // times min((31 a / L)^-2, kBendDampingGrowthCap); lanes_compliant.glsl alike.
 constexpr double kBendDampingGrowthCap = 4.0;
@@ -257,7 +275,7 @@ void Simulator::integrate(const Substep& st) {
       // The range test is a static decision; made on the float values the GPU compares, so both agree.
       if (gp.global_stiffness > 0.0 &&
           static_cast<float>(rest_.arc_fraction[i]) <= static_cast<float>(gp.global_range)) {
-        next += (length_model_ == LengthModel::kCompliant ? compliant_global_fraction(gp.global_stiffness, st.h)
+        next += (compliant_model() ? compliant_global_fraction(gp.global_stiffness, st.h)
                                                           : gp.global_stiffness) *
                 (goal - next);
       }
@@ -327,6 +345,30 @@ namespace {
 Vec3 constraint_direction(Vec3 d, Vec3 was, double rest);
 }  // namespace
 
+// kCompliant's and kConservative's shape targets at the current positions: every edge's direction (frame_dir_,
+// constraint_direction) and every constraint's target (targets_[v], v = 1 .. n-2): edge v's skinned rest edge turned
+// by the minimal rotation of the last edge before it that turns the frame (frame_turns; none: no turn), from that
+// edge's skinned rest direction onto its current one. frame_edge (optional): that edge per constraint (-1: none).
+void Simulator::shape_targets(size_t b, const Quat& skin, std::vector<int>* frame_edge) {
+  const uint32_t n = rest_.vertices_per_strand;
+  auto rest_edge = [&](uint32_t k) { return quat_rotate(skin, rest_.rest_pos[b + k + 1] - rest_.rest_pos[b + k]); };
+  for (uint32_t k = 0; k + 1 < n; ++k) {
+    frame_dir_[k] = constraint_direction(pos_[b + k + 1] - pos_[b + k], prev_[b + k + 1] - prev_[b + k],
+                                         rest_.rest_length[b + k]);
+  }
+  Quat turn{0, 0, 0, 1};
+  int j = -1;
+  for (uint32_t v = 1; v + 1 < n; ++v) {
+    const uint32_t k = v - 1;  // the edge arriving at v
+    if (rest_.frame_turns[b + v] && dot(frame_dir_[k], frame_dir_[k]) > 0.0) {
+      turn = quat_from_two_unit(normalize(rest_edge(k)), frame_dir_[k]);
+      j = static_cast<int>(k);
+    }
+    targets_[v] = quat_rotate(turn, rest_edge(v));
+    if (frame_edge) (*frame_edge)[v] = j;
+  }
+}
+
 void Simulator::local_shape_compliant(const Substep& st) {
   // SimModel::kCompliant's local shape (see simulator.hpp). Per iteration:
   //  1. every edge's direction u_k from the current positions (blended with its previous-step direction when short
@@ -349,22 +391,10 @@ void Simulator::local_shape_compliant(const Substep& st) {
     const size_t b = size_t{g} * n;
     const Quat skin = skin_rotation(st, g);
     auto w = [&](uint32_t v) { return rest_.inv_mass[b + v] > 0.0 ? 1.0 : 0.0; };
-    auto rest_edge = [&](uint32_t k) { return quat_rotate(skin, rest_.rest_pos[b + k + 1] - rest_.rest_pos[b + k]); };
     for (uint32_t v = 0; v < n; ++v) lam3_[v] = Vec3{};
     for (uint32_t it = 0; it < gp.local_iterations; ++it) {
       // 1. Directions (frame_dir_), then every constraint's target (targets_).
-      for (uint32_t k = 0; k + 1 < n; ++k) {
-        frame_dir_[k] = constraint_direction(pos_[b + k + 1] - pos_[b + k], prev_[b + k + 1] - prev_[b + k],
-                                             rest_.rest_length[b + k]);
-      }
-      Quat turn{0, 0, 0, 1};
-      for (uint32_t v = 1; v + 1 < n; ++v) {
-        const uint32_t k = v - 1;  // the edge arriving at v
-        if (rest_.frame_turns[b + v] && dot(frame_dir_[k], frame_dir_[k]) > 0.0) {
-          turn = quat_from_two_unit(normalize(rest_edge(k)), frame_dir_[k]);
-        }
-        targets_[v] = quat_rotate(turn, rest_edge(v));
-      }
+      shape_targets(b, skin);
       // 2. The tridiagonal solve (rows v = 1 .. n-2; c' in seg_cp_, d' in tdp_).
       double cp_before = 0.0;
       Vec3 dp_before{};
@@ -395,6 +425,163 @@ void Simulator::local_shape_compliant(const Substep& st) {
         if (w(v) > 0.0) pos_[b + v] += before - here;
       }
       for (uint32_t v = 1; v + 1 < n; ++v) lam3_[v] += tdp_[v];
+    }
+  }
+}
+
+void Simulator::local_shape_conservative(const Substep& st) {
+  // LengthModel::kConservative's local shape (see simulator.hpp). Per iteration: the targets as kCompliant's
+  // (local_shape_compliant), each constraint's gradient blocks (I on x_{v+1}, -I on x_v, -J on x_{j+1}, +J on x_j),
+  // then the symmetric system (rows divided by 1 + gamma): (G W G^T + at / (1 + gamma)) dlambda =
+  // -(C + at lambda + gamma G (x - prev)) / (1 + gamma), solved by a banded Cholesky factorisation (constraints u and v
+  // are coupled when they share a free vertex: |u - v| <= 2 for frames that turn at every edge), then
+  // x += W G^T dlambda.
+  const uint32_t n = rest_.vertices_per_strand;
+  if (n < 3) return;
+  const uint32_t m = n - 2;  // constraints v = 1 .. n - 2, row block v - 1
+  const size_t dim = size_t{3} * m;
+  struct Block {
+    uint32_t vertex;
+    double a[9];  // row-major 3x3
+  };
+  std::vector<std::array<Block, 4>> grad(n);
+  std::vector<uint32_t> grad_count(n, 0);
+  std::vector<int> frame_edge(n, -1);
+  std::vector<Vec3> lam(n), dlam(n);
+  for (uint32_t g = 0; g < rest_.guide_count; ++g) {
+    const GroupStep& gp = group_of(g);
+    if (gp.local_iterations == 0) continue;
+    const size_t b = size_t{g} * n;
+    const Quat skin = skin_rotation(st, g);
+    const double fglob = compliant_global_fraction(gp.global_stiffness, st.h);
+    auto w = [&](uint32_t v) {
+      if (!(rest_.inv_mass[b + v] > 0.0)) return 0.0;
+      if (gp.global_stiffness > 0.0 &&
+          static_cast<float>(rest_.arc_fraction[b + v]) <= static_cast<float>(gp.global_range))
+        return 1.0 - fglob;  // 1 / (1 + k h^2)
+      return 1.0;
+    };
+    for (uint32_t v = 0; v < n; ++v) lam[v] = Vec3{};
+    for (uint32_t it = 0; it < gp.local_iterations; ++it) {
+      // 1. Directions and targets (as local_shape_compliant), and each constraint's gradient blocks.
+      shape_targets(b, skin, &frame_edge);
+      for (uint32_t v = 1; v + 1 < n; ++v) {
+        const int j = frame_edge[v];
+        std::array<Block, 4>& gb = grad[v];
+        gb[0] = {v + 1, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+        gb[1] = {v, {-1, 0, 0, 0, -1, 0, 0, 0, -1}};
+        grad_count[v] = 2;
+        if (j >= 0) {
+          // dT/de = ((T.u) I - u T^T) / |e| (|e| at least half its rest length: a compressed edge's direction is
+          // blended, constraint_direction).
+          const Vec3 u = frame_dir_[j], t = targets_[v];
+          const double len = std::max(length(pos_[b + j + 1] - pos_[b + j]), 0.5 * rest_.rest_length[b + j]);
+          const double tu = dot(t, u);
+          Block up{static_cast<uint32_t>(j + 1), {}}, lo{static_cast<uint32_t>(j), {}};
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+              const double jrc = ((r == c ? tu : 0.0) - (&u.x)[r] * (&t.x)[c]) / len;
+              up.a[r * 3 + c] = -jrc;
+              lo.a[r * 3 + c] = jrc;
+            }
+          gb[2] = up;
+          gb[3] = lo;
+          grad_count[v] = 4;
+        }
+      }
+      // 2. The banded system. Half bandwidth: 3 x the largest distance between coupled constraints + 2.
+      uint32_t reach = 0;
+      for (uint32_t v = 1; v + 1 < n; ++v)
+        if (frame_edge[v] >= 0) reach = std::max(reach, v - static_cast<uint32_t>(frame_edge[v]));
+      const size_t p = 3 * size_t{std::min(reach + 1, m - 1)} + 2;  // |u - v| <= reach + 1
+      band_.assign(dim * (p + 1), 0.0);
+      band_rhs_.assign(dim, 0.0);
+      auto at_band = [&](size_t r, size_t c) -> double& { return band_[r * (p + 1) + (r - c)]; };  // c <= r
+      for (uint32_t v = 1; v + 1 < n; ++v) {
+        const size_t rv = 3 * size_t{v - 1};
+        const double at = conservative_bend_alpha(gp.local_stiffness, rest_.rest_length[b + v], rest_.strand_length[g], st.h);
+        const double gm = kConservativeDampingScale * compliant_bend_damping_edge(rest_.rest_length[b + v], rest_.strand_length[g], st.h);
+        bool free_vertex = false;
+        for (uint32_t k = 0; k < grad_count[v]; ++k) free_vertex = free_vertex || w(grad[v][k].vertex) > 0.0;
+        if (!free_vertex || !std::isfinite(at)) {
+          for (int i = 0; i < 3; ++i) at_band(rv + i, rv + i) = 1.0;  // dlambda 0
+          continue;
+        }
+        Vec3 rate{};  // G (x - prev)
+        for (uint32_t k = 0; k < grad_count[v]; ++k) {
+          const Block& bl = grad[v][k];
+          const Vec3 d = pos_[b + bl.vertex] - prev_[b + bl.vertex];
+          for (int r = 0; r < 3; ++r) (&rate.x)[r] += bl.a[r * 3] * d.x + bl.a[r * 3 + 1] * d.y + bl.a[r * 3 + 2] * d.z;
+        }
+        const Vec3 c = pos_[b + v + 1] - pos_[b + v] - targets_[v];
+        const Vec3 rhs = (-1.0 / (1.0 + gm)) * (c + at * lam[v] + gm * rate);
+        for (int r = 0; r < 3; ++r) band_rhs_[rv + r] = (&rhs.x)[r];
+        for (int r = 0; r < 3; ++r) at_band(rv + r, rv + r) += at / (1.0 + gm);
+        // G_v W G_u^T for u <= v (the lower triangle), over the free vertices they share.
+        const uint32_t u_first = v > reach + 1 ? v - reach - 1 : 1;
+        for (uint32_t u = u_first; u <= v; ++u) {
+          const size_t ru = 3 * size_t{u - 1};
+          bool u_free = false;
+          for (uint32_t k = 0; k < grad_count[u]; ++k) u_free = u_free || w(grad[u][k].vertex) > 0.0;
+          if (!u_free || !std::isfinite(conservative_bend_alpha(gp.local_stiffness, rest_.rest_length[b + u],
+                                                                rest_.strand_length[g], st.h)))
+            continue;
+          for (uint32_t kv = 0; kv < grad_count[v]; ++kv)
+            for (uint32_t ku = 0; ku < grad_count[u]; ++ku) {
+              const Block& x = grad[v][kv];
+              const Block& y = grad[u][ku];
+              if (x.vertex != y.vertex || w(x.vertex) == 0.0) continue;
+              const double wx = w(x.vertex);
+              for (int r = 0; r < 3; ++r)
+                for (int c2 = 0; c2 < 3; ++c2) {
+                  if (u == v && c2 > r) continue;
+                  double sum = 0.0;
+                  for (int l = 0; l < 3; ++l) sum += x.a[r * 3 + l] * y.a[c2 * 3 + l];
+                  at_band(rv + r, ru + c2) += wx * sum;
+                }
+            }
+        }
+      }
+      // 3. Cholesky (L L^T, in place in the band), forward and back substitution.
+      for (size_t r = 0; r < dim; ++r) {
+        const size_t c0 = r > p ? r - p : 0;
+        for (size_t c = c0; c <= r; ++c) {
+          double sum = at_band(r, c);
+          const size_t k0 = std::max(c0, c > p ? c - p : 0);
+          for (size_t k = k0; k < c; ++k) sum -= at_band(r, k) * at_band(c, k);
+          if (c < r) {
+            at_band(r, c) = sum / at_band(c, c);
+          } else {
+            at_band(r, r) = std::sqrt(std::max(sum, 1e-300));
+          }
+        }
+      }
+      for (size_t r = 0; r < dim; ++r) {
+        double sum = band_rhs_[r];
+        for (size_t k = r > p ? r - p : 0; k < r; ++k) sum -= at_band(r, k) * band_rhs_[k];
+        band_rhs_[r] = sum / at_band(r, r);
+      }
+      for (size_t r = dim; r-- > 0;) {
+        double sum = band_rhs_[r];
+        for (size_t k = r + 1; k < std::min(dim, r + p + 1); ++k) sum -= at_band(k, r) * band_rhs_[k];
+        band_rhs_[r] = sum / at_band(r, r);
+      }
+      // 4. x += W G^T dlambda; lambda += dlambda.
+      for (uint32_t v = 1; v + 1 < n; ++v) {
+        dlam[v] = Vec3{band_rhs_[3 * (v - 1)], band_rhs_[3 * (v - 1) + 1], band_rhs_[3 * (v - 1) + 2]};
+        lam[v] += dlam[v];
+      }
+      for (uint32_t v = 1; v + 1 < n; ++v) {
+        for (uint32_t k = 0; k < grad_count[v]; ++k) {
+          const Block& bl = grad[v][k];
+          if (w(bl.vertex) == 0.0) continue;
+          const Vec3 d = w(bl.vertex) * dlam[v];
+          // G^T: the block's transpose.
+          pos_[b + bl.vertex] += Vec3{bl.a[0] * d.x + bl.a[3] * d.y + bl.a[6] * d.z,
+                                      bl.a[1] * d.x + bl.a[4] * d.y + bl.a[7] * d.z,
+                                      bl.a[2] * d.x + bl.a[5] * d.y + bl.a[8] * d.z};
+        }
+      }
     }
   }
 }
@@ -484,7 +671,7 @@ void Simulator::solve_lengths(size_t b, double weight) {
   // sub-micrometre segment (hard case 8) would otherwise hold every Newton step of its strand to a fraction of a
   // micrometre, and the strand's other segments stayed stretched by up to 75 %; its direction stays defined as it
   // vanishes (constraint_direction).
-  const double reach_floor = length_model_ == LengthModel::kCompliant
+  const double reach_floor = compliant_model()
                                  ? kCompliantReachFloorRel * rest_.strand_length[b / n] / static_cast<double>(m)
                                  : 0.0;
   double scale = weight;
@@ -569,7 +756,7 @@ void Simulator::length_and_collision(const Substep& st) {
       const Vec3 w = a * (st.wind_h2[0] + st.wind_h2[2]) + (1.0 - a) * (st.wind_h2[1] + st.wind_h2[3]);
       // The compliant model walks from the tip, so that every segment's direction is the one before the wind (the
       // lanes of its GPU kernel push all vertices at once); the other models from the root, each parent pushed.
-      const bool from_tip = length_model_ == LengthModel::kCompliant;
+      const bool from_tip = compliant_model();
       for (uint32_t k = 1; k < n; ++k) {
         const uint32_t v = from_tip ? n - k : k;
         if (!movable(b + v)) continue;
@@ -650,7 +837,7 @@ void Simulator::length_and_collision(const Substep& st) {
       }
       segment(split, movable(b + split) ? 1.0 : 0.0, movable(b + split + 1) ? 1.0 : 0.0, false);
     };
-    if (length_model_ == LengthModel::kCompliant) {
+    if (compliant_model()) {
       // SimModel::kCompliant: the Newmark model's Newton step and implicit transverse response, then
       // length_iterations more Newton steps (projections of what the transverse solve moved); every step a tridiagonal solve over the strand (parallel cyclic
       // reduction over the lanes on the GPU), and no serial clean-up: what the linearisation leaves is second order in

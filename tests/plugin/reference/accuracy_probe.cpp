@@ -3,8 +3,9 @@
 // the convergence of a shaken strand's trajectory as the step rate doubles. A diagnostic, not a test.
 //   tressvk_accuracy_probe [chain|cantilever|convergence|rest|looks|perturb|upright|stretch]...
 // perturb / upright: the growth of a small perturbation of the initial state (rounding amplification; docs/accuracy.md).
-// Environment: TVK_LENGTH_MODEL=newmark (the reference's Newmark length model); for `rest`, TVK_LOCAL / TVK_GLOBAL
-// (stiffness) and TVK_LIT (local iterations) override the defaults.
+// Environment: TVK_LENGTH_MODEL=newmark | compliant | conservative (the reference's models; default
+// follow-the-leader); for `rest`, TVK_LOCAL / TVK_GLOBAL (stiffness) and TVK_LIT (local iterations) override the
+// defaults.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -20,7 +21,7 @@ using namespace tvk_analytic;
 
 namespace {
 
-// TVK_LENGTH_MODEL=newmark runs every setup on the reference's Newmark length model (default: follow-the-leader).
+// TVK_LENGTH_MODEL (newmark, compliant, conservative) runs every setup on that model (default: follow-the-leader).
 LengthModel g_model = LengthModel::kFollowTheLeader;
 
 void chain() {
@@ -76,7 +77,8 @@ void cantilever() {
 // every guide vertex, / median length), up to 3840 Hz on the CPU, per groom and scene, as a chain (shape terms off)
 // and at the defaults.
 // TVK_FRAMES (default 30) frames per run, rates from TVK_RATE (default 240) Hz doubling up to 3840, TVK_GROOM (both
-// grooms by default).
+// grooms by default); at the defaults TVK_LIT, TVK_LENIT (length iterations), TVK_GLOBAL, TVK_LOCAL, TVK_DAMP and
+// TVK_VSP override the parameters.
 void convergence() {
   const uint32_t frames = std::getenv("TVK_FRAMES") ? static_cast<uint32_t>(std::atoi(std::getenv("TVK_FRAMES"))) : 30u;
   const double first = std::getenv("TVK_RATE") ? std::atof(std::getenv("TVK_RATE")) : 240.0;
@@ -89,6 +91,14 @@ void convergence() {
         if (only && std::strcmp(only, groom) != 0) continue;
         TvkSimParams p = chain_only ? chain_params() : TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT;
         if (chain_only) p.damping = 0.08f;
+        if (!chain_only) {
+          if (const char* e = std::getenv("TVK_LIT")) p.local_iterations = static_cast<uint32_t>(std::atoi(e));
+          if (const char* e = std::getenv("TVK_LENIT")) p.length_iterations = static_cast<uint32_t>(std::atoi(e));
+          if (const char* e = std::getenv("TVK_GLOBAL")) p.global_stiffness = static_cast<float>(std::atof(e));
+          if (const char* e = std::getenv("TVK_LOCAL")) p.local_stiffness = static_cast<float>(std::atof(e));
+          if (const char* e = std::getenv("TVK_DAMP")) p.damping = static_cast<float>(std::atof(e));
+          if (const char* e = std::getenv("TVK_VSP")) p.vsp_coefficient = static_cast<float>(std::atof(e));
+        }
         const auto a = tvk_test::groom(groom, 8);
         double median = 0;
         std::vector<std::vector<std::vector<Vec3>>> runs;
@@ -155,7 +165,9 @@ void looks() {
     double drop[2] = {0, 0}, median = 0;
     for (int m = 0; m < 2; ++m) {
       tressvk::reference::Simulator sim = tvk_test::make_sim(a);
-      sim.set_model(m == 0 ? LengthModel::kFollowTheLeader : LengthModel::kCompliant);
+      // The second model: the compliant one, or TVK_LENGTH_MODEL's where it names another.
+      sim.set_model(m == 0 ? LengthModel::kFollowTheLeader
+                           : (g_model == LengthModel::kFollowTheLeader ? LengthModel::kCompliant : g_model));
       const auto geo = tressvk::reference::scene_geometry(sim.rest());
       tressvk::reference::FramePlan plan;
       for (uint32_t f = 0; f < 300; ++f) plan = sim.advance(tressvk::reference::scene_frame("settle", f, geo));
@@ -326,6 +338,7 @@ void stretch_probe() {
 int main(int argc, char** argv) {
   if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "newmark") == 0) g_model = LengthModel::kNewmark;
   if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "compliant") == 0) g_model = LengthModel::kCompliant;
+  if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "conservative") == 0) g_model = LengthModel::kConservative;
   for (int i = 1; i < argc || argc == 1; ++i) {
     const char* what = argc == 1 ? "all" : argv[i];
     const bool all = std::strcmp(what, "all") == 0;

@@ -55,7 +55,17 @@ class Simulator {
   // and implicit transverse response, then length_iterations more Newton steps (up to 4 more while a segment is off by
   // > 1e-3), with no serial clean-up. Measured (docs/accuracy.md): cantilever sag within 10 % over N 16-128,
   // 120-480 Hz and 1-8 iterations (60 Hz: +12.7 %), where the follow-the-leader model spreads over 6x.
-  enum class LengthModel { kFollowTheLeader, kNewmark, kCompliant };
+  //
+  // kConservative (reference only, opt-in; no GPU twin yet): kCompliant with a conservative local shape. kCompliant
+  // holds each constraint's target while it solves, so the target's dependence on the edge before it has no reaction:
+  // the shape force is not the gradient of an energy, and it pumps energy into curls (the curly groom's trajectory
+  // stops converging as h shrinks: docs/accuracy.md). Here the same constraints are solved with their full gradient:
+  // C_v = x_{v+1} - x_v - T_v(x_{j+1} - x_j) (j: the frame edge before v), dT/de = ((T.u) I - u T^T) / |e| (the
+  // target turns with its frame edge; its twist about that edge is left out), so each constraint touches four
+  // vertices and the system is block (3x3) pentadiagonal: a banded Cholesky solve per strand per iteration. The
+  // constraint then carries the bending moment (not the shear load), so the compliance per edge is a^4 / B and the
+  // calibration is its own (the same cantilever sag at 240 Hz, 2 iterations, 32 vertices).
+  enum class LengthModel { kFollowTheLeader, kNewmark, kCompliant, kConservative };
   using SimModel = LengthModel;
   void set_length_model(LengthModel m) { length_model_ = m; }
   void set_model(SimModel m) { length_model_ = m; }
@@ -104,6 +114,11 @@ class Simulator {
   Quat skin_delta(const Substep& step, uint32_t g) const;
   Quat skin_delta_before(const Substep& step, uint32_t g) const;
   Quat current_root_frame(const Substep& step, uint32_t g) const;
+  bool compliant_model() const {
+    return length_model_ == LengthModel::kCompliant || length_model_ == LengthModel::kConservative;
+  }
+  void local_shape_conservative(const Substep& st);
+  void shape_targets(size_t strand_base, const Quat& skin, std::vector<int>* frame_edge = nullptr);
 
   ModelRest rest_;                     // inv_mass: with each group's rigid_below applied
   std::vector<double> asset_inv_mass_;  // the asset's own pins
@@ -125,6 +140,7 @@ class Simulator {
   std::vector<Vec3> move_, tdp_;
   std::vector<Vec3> lam3_, frame_dir_;  // kCompliant: shape multipliers per edge; per-edge directions
   std::vector<Vec3> targets_;           // kCompliant: each shape constraint's target edge
+  std::vector<double> band_, band_rhs_;  // kConservative: the banded system and its right-hand side
 };
 
 }  // namespace tressvk::reference
