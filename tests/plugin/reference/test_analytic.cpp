@@ -197,18 +197,23 @@ TEST_CASE("analytic: a free strand falls freely", "[reference][analytic]") {
 // move, not a physical rate: 0.049, 0.049, 0.045, 0.040 (rms / median length) for 240/480 ... 1920/3840 Hz; the same
 // in shake, run and wind and on the curly groom (docs/accuracy.md). [!shouldfail] until the length constraints are
 // consistent.
-static void check_convergence(LengthModel model) {
-  TvkSimParams p = chain_params();
-  p.damping = 0.08f;
-  const auto a = tvk_test::groom("straight", 8);
+// The rms trajectory distance (/ median length) between step rates r and 2r, 240 ... 3840 Hz, `frames` frames.
+static std::vector<double> halving_distances(const tressvk::asset::HairAsset& a, const TvkSimParams& p,
+                                             const char* scene, uint32_t frames, LengthModel model) {
   double median = 0;
   std::vector<std::vector<std::vector<Vec3>>> runs;
   for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0})
-    runs.push_back(trajectory(a, p, rate, "settle", 30, &median, model));
+    runs.push_back(trajectory(a, p, rate, scene, frames, &median, model));
   std::vector<double> diffs;
-  for (size_t k = 0; k + 1 < runs.size(); ++k) {
+  for (size_t k = 0; k + 1 < runs.size(); ++k)
     diffs.push_back(tressvk::reference::trajectory_error(runs[k], runs[k + 1], median).rms_rel);
-  }
+  return diffs;
+}
+
+static void check_convergence(LengthModel model) {
+  TvkSimParams p = chain_params();
+  p.damping = 0.08f;
+  const std::vector<double> diffs = halving_distances(tvk_test::groom("straight", 8), p, "settle", 30, model);
   INFO("rms differences per halving: " << diffs[0] << ", " << diffs[1] << ", " << diffs[2] << ", " << diffs[3]);
   for (size_t k = 0; k + 1 < diffs.size(); ++k) CHECK(diffs[k + 1] * 1.5 <= diffs[k]);
 }
@@ -291,14 +296,8 @@ TEST_CASE("analytic: the model converges as the step halves (compliant model, sh
 // both unbiased and internal exists.
 TEST_CASE("analytic: the curly groom's shaken trajectory converges as the step halves (compliant model)",
           "[reference][analytic][!shouldfail]") {
-  const auto a = tvk_test::groom("curly", 8);
-  double median = 0;
-  std::vector<std::vector<std::vector<Vec3>>> runs;
-  for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0})
-    runs.push_back(trajectory(a, tvk_test::default_params(), rate, "shake", 30, &median, LengthModel::kCompliant));
-  std::vector<double> diffs;
-  for (size_t k = 0; k + 1 < runs.size(); ++k)
-    diffs.push_back(tressvk::reference::trajectory_error(runs[k], runs[k + 1], median).rms_rel);
+  const std::vector<double> diffs =
+      halving_distances(tvk_test::groom("curly", 8), tvk_test::default_params(), "shake", 30, LengthModel::kCompliant);
   INFO("rms differences per halving: " << diffs[0] << ", " << diffs[1] << ", " << diffs[2] << ", " << diffs[3]);
   for (size_t k = 0; k + 1 < diffs.size(); ++k) CHECK(diffs[k + 1] < diffs[k]);
   CHECK(diffs.back() * 5.0 <= diffs.front());
@@ -482,14 +481,8 @@ TEST_CASE("analytic: the curly rest pose is a fixed point (compliant model)", "[
 // Over 60-3840 Hz and 120 frames (tressvk_accuracy_probe convergence): 9.1e-4 ... 3.4e-5, 27x.
 TEST_CASE("analytic: the curly groom's shaken trajectory converges as the step halves (conservative local shape)",
           "[reference][analytic]") {
-  const auto a = tvk_test::groom("curly", 8);
-  double median = 0;
-  std::vector<std::vector<std::vector<Vec3>>> runs;
-  for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0})
-    runs.push_back(trajectory(a, tvk_test::default_params(), rate, "shake", 30, &median, LengthModel::kConservative));
-  std::vector<double> diffs;
-  for (size_t k = 0; k + 1 < runs.size(); ++k)
-    diffs.push_back(tressvk::reference::trajectory_error(runs[k], runs[k + 1], median).rms_rel);
+  const std::vector<double> diffs =
+      halving_distances(tvk_test::groom("curly", 8), tvk_test::default_params(), "shake", 30, LengthModel::kConservative);
   INFO("rms differences per halving: " << diffs[0] << ", " << diffs[1] << ", " << diffs[2] << ", " << diffs[3]);
   for (size_t k = 0; k + 1 < diffs.size(); ++k) CHECK(diffs[k + 1] < diffs[k]);
   for (double d : diffs) CHECK(d <= 3e-4);
@@ -502,13 +495,8 @@ TEST_CASE("analytic: the straight groom's trajectory converges as the step halve
           "[reference][analytic]") {
   const auto a = tvk_test::groom("straight", 8);
   for (const char* scene : {"settle", "shake"}) {
-    double median = 0;
-    std::vector<std::vector<std::vector<Vec3>>> runs;
-    for (double rate : {240.0, 480.0, 960.0, 1920.0, 3840.0})
-      runs.push_back(trajectory(a, tvk_test::default_params(), rate, scene, 30, &median, LengthModel::kConservative));
-    std::vector<double> diffs;
-    for (size_t k = 0; k + 1 < runs.size(); ++k)
-      diffs.push_back(tressvk::reference::trajectory_error(runs[k], runs[k + 1], median).rms_rel);
+    const std::vector<double> diffs =
+        halving_distances(a, tvk_test::default_params(), scene, 30, LengthModel::kConservative);
     INFO(scene << ": rms differences per halving: " << diffs[0] << ", " << diffs[1] << ", " << diffs[2] << ", "
                << diffs[3]);
     for (size_t k = 0; k + 1 < diffs.size(); ++k) CHECK(diffs[k + 1] < diffs[k]);
