@@ -221,7 +221,7 @@ double compliant_bend_alpha(double s_step, double edge, double strand_length, do
 // kConservative's compliance per edge: its constraints carry the bending moment (angle at v = alpha M / a^2), so
 // a^4 / B keeps the sag independent of N; kConservativeCalibration puts the cantilever's sag (L 0.2 m, 2 root vertices
 // pinned, defaults, 240 Hz, 2 iterations, 32 vertices) at kCompliant's (tressvk_accuracy_probe cantilever).
-constexpr double kConservativeCalibration = 0.080;
+constexpr double kConservativeCalibration = 0.080;  // times compliant_bend_alpha_base (kBendCalibration 5.4)
 // kConservative's damping: kCompliant's damping time per edge times this (1.5 ms at the calibration edge), on the
 // constraints' own rate G (x - prev) (internal: a rigid turn is not damped). kCompliant needs 5 ms to take out the
 // energy its held targets put in; here the curly groom's trajectory converges as h halves with 1.5 ms, and more
@@ -345,6 +345,16 @@ namespace {
 Vec3 constraint_direction(Vec3 d, Vec3 was, double rest);
 }  // namespace
 
+// A vertex's weight in kConservative's local shape solve: 0 pinned, 1 free, 1 / (1 + k h^2) where the global spring
+// pulls it (the spring's pull in integrate, a fraction f = k h^2 / (1 + k h^2) of the way to the skinned rest pose,
+// and the shape solve with these weights are then one implicit step: 1 - f).
+double Simulator::shape_weight(size_t i, const GroupStep& gp, double h) const {
+  if (!(rest_.inv_mass[i] > 0.0)) return 0.0;
+  if (gp.global_stiffness > 0.0 && static_cast<float>(rest_.arc_fraction[i]) <= static_cast<float>(gp.global_range))
+    return 1.0 - compliant_global_fraction(gp.global_stiffness, h);
+  return 1.0;
+}
+
 // kCompliant's and kConservative's shape targets at the current positions: every edge's direction (frame_dir_,
 // constraint_direction) and every constraint's target (targets_[v], v = 1 .. n-2): edge v's skinned rest edge turned
 // by the minimal rotation of the last edge before it that turns the frame (frame_turns; none: no turn), from that
@@ -382,7 +392,9 @@ void Simulator::local_shape_compliant(const Substep& st) {
   //     (D W D^T + at) dlambda = -(C + at lambda), a scalar tridiagonal system with three right-hand sides (row v:
   //     (w_v + w_{v+1} + at_v) on the diagonal, -w_v and -w_{v+1} beside it; Thomas here, parallel cyclic reduction
   //     over the lanes on the GPU), then x_v += w_v (dlambda_{v-1} - dlambda_v) and lambda += dlambda
-  //     (at_v: compliant_bend_alpha; w: 1 free, 0 pinned).
+  //     (at_v: compliant_bend_alpha; w: 1 free, 0 pinned. kConservative's weights, shape_weight, measured here too:
+  //     the cantilever at 60 Hz +12.7 % -> +5.1 %, but Ratboy baked at 8 vertices, shaken at 60 Hz, then stretched
+  //     by 77 % in its first frames, where the length solve starts from a violent step; not taken).
   // The solve is exact, so the iterations only refresh the targets: the static sag does not depend on them.
   const uint32_t n = rest_.vertices_per_strand;
   for (uint32_t g = 0; g < rest_.guide_count; ++g) {
@@ -453,14 +465,7 @@ void Simulator::local_shape_conservative(const Substep& st) {
     if (gp.local_iterations == 0) continue;
     const size_t b = size_t{g} * n;
     const Quat skin = skin_rotation(st, g);
-    const double fglob = compliant_global_fraction(gp.global_stiffness, st.h);
-    auto w = [&](uint32_t v) {
-      if (!(rest_.inv_mass[b + v] > 0.0)) return 0.0;
-      if (gp.global_stiffness > 0.0 &&
-          static_cast<float>(rest_.arc_fraction[b + v]) <= static_cast<float>(gp.global_range))
-        return 1.0 - fglob;  // 1 / (1 + k h^2)
-      return 1.0;
-    };
+    auto w = [&](uint32_t v) { return shape_weight(b + v, gp, st.h); };
     for (uint32_t v = 0; v < n; ++v) lam[v] = Vec3{};
     for (uint32_t it = 0; it < gp.local_iterations; ++it) {
       // 1. Directions and targets (as local_shape_compliant), and each constraint's gradient blocks.

@@ -309,8 +309,10 @@ void upright() {
 }
 
 // The compliant length solve's worst stretch per 6 frames (reference::stretch) on TVK_GROOM x TVK_GUIDES x TVK_N in
-// TVK_SCENE (defaults: long128 8 x 128, run: hard case 2); TVK_NEAR_DUP=1 instead puts sub-micrometre segments into
-// the straight groom as hard case 8 does (reference::with_near_duplicate_vertices).
+// TVK_SCENE at TVK_RATE Hz (defaults: long128 8 x 128, run, 240 Hz: hard case 2); TVK_NEAR_DUP=1 instead puts sub-micrometre segments into
+// the straight groom as hard case 8 does (reference::with_near_duplicate_vertices); TVK_RATBOY=…/Ratboy_mohawk.tfx the
+// Ratboy mohawk with its bones, baked at TVK_N vertices. TVK_EVERY prints every frame; TVK_DEBUG lists the segments
+// more than 5 % off their length in a frame whose worst is.
 void stretch_probe() {
   const char* groom_name = std::getenv("TVK_GROOM") ? std::getenv("TVK_GROOM") : "long128";
   const char* scene = std::getenv("TVK_SCENE") ? std::getenv("TVK_SCENE") : "run";
@@ -319,7 +321,17 @@ void stretch_probe() {
   auto a = tvk_test::groom(groom_name, guides, 0, n);
   if (std::getenv("TVK_NEAR_DUP"))
     a = tressvk::reference::with_near_duplicate_vertices(tvk_test::groom("straight", 8));
-  tressvk::reference::Simulator sim = tvk_test::make_sim(a);
+  if (const char* path = std::getenv("TVK_RATBOY")) {  // the Ratboy mohawk baked at TVK_N vertices instead
+    tressvk::baker::RawGroom raw = tressvk::baker::import_file(path);
+    std::string bones = path;
+    tressvk::baker::apply_tfxbone(raw, bones.substr(0, bones.size() - 4) + ".tfxbone");
+    tressvk::baker::BakeOptions options;
+    options.vertices_per_strand = n;
+    a = tressvk::baker::bake(raw, options);
+  }
+  TvkSimSettings s = tvk_test::default_settings();
+  if (const char* e = std::getenv("TVK_RATE")) s.time.step_rate = static_cast<float>(std::atof(e));
+  tressvk::reference::Simulator sim = tvk_test::make_sim(a, tvk_test::default_params(), s);
   sim.set_model(g_model);
   const auto geo = tressvk::reference::scene_geometry(sim.rest());
   std::printf("frame,max_stretch\n");
@@ -328,7 +340,18 @@ void stretch_probe() {
     sim.advance(tressvk::reference::scene_frame(scene, f, geo));
     const double st = tressvk::reference::stretch(sim.positions().first(sim.rest().rest_pos.size()), sim.rest()).max;
     worst = std::max(worst, st);
-    if (f % 6 == 5) std::printf("%u,%.3e\n", f, st);
+    if (f % 6 == 5 || std::getenv("TVK_EVERY")) std::printf("%u,%.3e\n", f, st);
+    if (std::getenv("TVK_DEBUG") && st > 0.05) {
+      const uint32_t nv = sim.rest().vertices_per_strand;
+      for (size_t i = 0; i + 1 < sim.rest().rest_pos.size(); ++i) {
+        if ((i + 1) % nv == 0) continue;
+        const double r = sim.rest().rest_length[i];
+        const double l = length(sim.positions()[i + 1] - sim.positions()[i]);
+        if (r > 0 && std::abs(l / r - 1) > 0.05)
+          std::printf("  strand %zu seg %zu rest %.3e now %.3e inv_mass %g %g strand_len %.3e\n", i / nv, i % nv, r, l,
+                      sim.rest().inv_mass[i], sim.rest().inv_mass[i + 1], sim.rest().strand_length[i / nv]);
+      }
+    }
   }
   std::printf("worst,%.3e\n", worst);
 }

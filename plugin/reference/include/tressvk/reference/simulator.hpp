@@ -119,6 +119,7 @@ class Simulator {
   }
   void local_shape_conservative(const Substep& st);
   void shape_targets(size_t strand_base, const Quat& skin, std::vector<int>* frame_edge = nullptr);
+  double shape_weight(size_t vertex, const GroupStep& gp, double h) const;
 
   ModelRest rest_;                     // inv_mass: with each group's rigid_below applied
   std::vector<double> asset_inv_mass_;  // the asset's own pins
