@@ -146,7 +146,7 @@ std::vector<HardCase> hard_cases() {
   }
   out.push_back(basic("zero-length and duplicate vertices",
                       "straight 8 x 32 with segments of 0.1-0.2 um (a vertex next to its parent, a tip on its "
-                      "parent, a cluster of 4 vertices within 0.4 um), shake",
+                      "parent, a cluster of 4 vertices within 0.4 um; respaced evenly on load), shake",
                       reference::with_near_duplicate_vertices(builtin("straight", 8)),
                       scene("shake")));
   {

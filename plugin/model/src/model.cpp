@@ -18,6 +18,52 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("reference: asset field " + what);
 }
 
+// kRespaceBelowRel: where a free vertex's segment is shorter than that fraction of the strand's mean segment, every
+// run of free vertices between two fixed points (a pinned vertex, or the free tip itself) is placed at equal arc
+// length along the strand's polyline between them, rounded to float as the GPU holds it. Returns whether it did.
+bool respace_short_segments(std::vector<Vec3>& pos, const std::vector<double>& inv_mass, size_t b, uint32_t n) {
+  double total = 0;
+  for (uint32_t v = 0; v + 1 < n; ++v) total += length(pos[b + v + 1] - pos[b + v]);
+  const double floor_len = kRespaceBelowRel * total / (n - 1);
+  bool short_free = false;
+  for (uint32_t v = 0; v + 1 < n; ++v) {
+    const bool free = inv_mass[b + v] > 0.0 || inv_mass[b + v + 1] > 0.0;
+    short_free = short_free || (free && length(pos[b + v + 1] - pos[b + v]) < floor_len);
+  }
+  if (!short_free || !(total > 0.0)) return false;
+  uint32_t v = 0;
+  while (v < n) {
+    if (!(inv_mass[b + v] > 0.0)) {
+      ++v;
+      continue;
+    }
+    // Free vertices start .. end; fixed points a (the vertex before, or the free root) and z (the pinned vertex after,
+    // or the free tip).
+    uint32_t end = v;
+    while (end + 1 < n && inv_mass[b + end + 1] > 0.0) ++end;
+    const uint32_t a = v > 0 ? v - 1 : v;
+    const uint32_t z = end + 1 < n ? end + 1 : end;
+    std::vector<double> arc(z - a + 1, 0.0);
+    for (uint32_t k = a; k < z; ++k) arc[k - a + 1] = arc[k - a] + length(pos[b + k + 1] - pos[b + k]);
+    const double run = arc.back();
+    std::vector<Vec3> placed(z - a + 1);
+    uint32_t seg = 0;
+    for (uint32_t k = a + 1; k < z; ++k) {
+      const double s = run * (k - a) / (z - a);
+      while (seg + 1 < z - a && arc[seg + 1] < s) ++seg;
+      const double len = arc[seg + 1] - arc[seg];
+      const double t = len > 0.0 ? (s - arc[seg]) / len : 0.0;
+      const Vec3 p = pos[b + a + seg] + t * (pos[b + a + seg + 1] - pos[b + a + seg]);
+      placed[k - a] = Vec3{static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+    }
+    if (run > 0.0) {
+      for (uint32_t k = a + 1; k < z; ++k) pos[b + k] = placed[k - a];
+    }
+    v = end + 1;
+  }
+  return true;
+}
+
 }  // namespace
 
 ModelRest build_model_rest(const asset::HairAsset& a) {
@@ -56,6 +102,9 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
   for (size_t i = 0; i < vcount; ++i) {
     m.rest_pos[i] = widen(a.rest_positions[i]);
     m.inv_mass[i] = a.rest_positions[i][3];
+  }
+  for (uint32_t g = 0; g < g_count; ++g) {
+    if (respace_short_segments(m.rest_pos, m.inv_mass, size_t{g} * n, n)) ++m.respaced_strands;
   }
   for (uint32_t g = 0; g < g_count; ++g) {
     const size_t b = size_t{g} * n;

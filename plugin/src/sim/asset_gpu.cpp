@@ -137,6 +137,12 @@ TvkResult tressvk_load_asset(TvkContext context, const TvkAssetLoadInfo* info, T
     if (TvkResult r = upload_statics(ctx, *a, info->upload_command_buffer); r != TVK_SUCCESS) return r;
     ctx.message(TVK_MESSAGE_INFO, "loaded %s: %u guides x %u vertices, %u follows per guide", source,
                 a->rest.guide_count, a->rest.vertices_per_strand, a->rest.follow_per_guide);
+    if (a->rest.respaced_strands > 0) {
+      ctx.message(TVK_MESSAGE_WARNING,
+                  "%s: %u strands have a segment under %g %% of their mean segment; their free vertices were respaced "
+                  "evenly along them (tressvk-bake resamples strands so that this never happens)",
+                  source, a->rest.respaced_strands, 100.0 * tressvk::model::kRespaceBelowRel);
+    }
     *out_asset = a.release();
     return TVK_SUCCESS;
   });

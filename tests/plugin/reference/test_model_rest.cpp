@@ -16,6 +16,7 @@
 #include <tressvk/baker/bake.hpp>
 #include <tressvk/baker/import.hpp>
 #include <tressvk/model/model.hpp>
+#include <tressvk/reference/near_duplicates.hpp>
 
 #include <cmath>
 #include <cstdlib>
@@ -99,4 +100,38 @@ TEST_CASE("model: the uploaded rest data is the asset's on the baked Ratboy moha
   const RestAgreement r = compare(a);
   // Pinned roots and the mohawk's short kinked segments carry frames over some edges.
   CHECK(r.edges_own > 0);
+  CHECK(model::build_model_rest(a).respaced_strands == 0);  // baked strands are evenly spaced
+}
+
+// Hard case 8's groom (0.1-0.2 um segments in guides 0-2): those strands' free vertices are respaced evenly along them
+// on load (model::kRespaceBelowRel); pinned vertices, free tips and every other strand keep the asset's float values.
+TEST_CASE("model: strands with sub-micrometre segments are respaced evenly on load", "[reference][model]") {
+  const tressvk::asset::HairAsset a = tressvk::reference::with_near_duplicate_vertices(groom("straight", 8));
+  const model::ModelRest m = model::build_model_rest(a);
+  const uint32_t n = a.vertices_per_strand;
+  CHECK(m.respaced_strands == 3);
+  for (uint32_t g = 0; g < m.guide_count; ++g) {
+    INFO("guide " << g);
+    const size_t b = size_t{g} * n;
+    const double mean = m.strand_length[g] / (n - 1);
+    double shortest = mean, longest = 0;
+    size_t moved = 0;
+    for (uint32_t v = 0; v < n; ++v) {
+      const auto& p = a.rest_positions[b + v];
+      const bool same = m.rest_pos[b + v].x == p[0] && m.rest_pos[b + v].y == p[1] && m.rest_pos[b + v].z == p[2];
+      moved += !same;
+      if (m.inv_mass[b + v] == 0.0 || v + 1 == n) CHECK(same);  // pinned vertices and the tip stay
+      if (v + 1 < n && m.inv_mass[b + v + 1] > 0.0) {
+        shortest = std::min(shortest, m.rest_length[b + v]);
+        longest = std::max(longest, m.rest_length[b + v]);
+      }
+    }
+    if (g < 3) {
+      CHECK(moved > 0);
+      // Evenly spaced along a straight strand (float rounding of the placed vertices: ~1e-7 of a segment).
+      CHECK(shortest >= (1.0 - 1e-5) * longest);
+    } else {
+      CHECK(moved == 0);
+    }
+  }
 }

@@ -28,6 +28,10 @@ namespace tressvk::model {
 // and at least kFrameEdgeMinRel of the strand's mean segment.
 inline constexpr double kFrameEdgeRatio = 0.2;
 inline constexpr double kFrameEdgeMinRel = 1e-3;
+// A strand with a segment shorter than kRespaceBelowRel of its mean segment has its free vertices respaced evenly along
+// it on load (build_model_rest): float32 cannot hold the direction of a sub-micrometre segment at real scale, and the
+// compliant model's length solve amplified that rounding 1e4-fold (hard case 8, docs/accuracy.md).
+inline constexpr double kRespaceBelowRel = 1e-2;
 // The share of the follow-the-leader move of a child that its parent receives back as velocity (DFTL, Mueller
 // et al. 2012, who recommend 0.9..1). GLSL twin: kFtlVelocityCorrection in common.glsl.
 inline constexpr double kFtlVelocityCorrection = 0.9;
@@ -76,6 +80,7 @@ struct ModelRest {
   double median_length = 0;    // the median of strand_length
   uint32_t rigid_strands = 0;  // strands the default rigid_below (kRigidStrandRel x median) carries rigidly
   uint32_t pinned_tip_strands = 0;  // strands with a pinned tip and a free vertex (TressFX bothEndsImmovable)
+  uint32_t respaced_strands = 0;    // strands whose free vertices were respaced on load (kRespaceBelowRel)
 };
 
 // Throws std::invalid_argument naming the field when the asset is inconsistent.
