@@ -63,7 +63,11 @@ TVK_TRIDIAGONAL(lanes_tridiagonal1, float)
 // neighbours) solved again and added. Parallel cyclic reduction's float error grows with the system's condition
 // (~N^2 for the weakly diagonally dominant length and shape systems) times the solution, which carries the strand's
 // whole load at low step rates; one refinement brings it back to rounding. (Skipping it where every row's residual
-// is already at rounding level measured slower on NVIDIA: the test costs a reduction per solve.)
+// is already at rounding level measured slower on NVIDIA: the test costs a reduction per solve.) The shape and
+// transverse solves use it; the length solve's Newton steps do not: each step is solved from the residual the step
+// before left, so an unrefined step's float error is what the next one corrects (NVIDIA H100, 240 Hz: Ratboy 113.5 ->
+// 107.8 us, curly 1 M 1,187 -> 1,107, 4 M 4,529 -> 4,130, step errors unchanged; refining only the last of the
+// shape's iterations as well was faster again but put Ratboy's step error at 60 Hz at 3.5e-5, over the 1e-5 bar).
 #define TVK_TRIDIAGONAL_REFINED(name, solve, T)                                                                       \
   T name(uint r, float a, float b, float c, T d) {                                                                    \
     T x = solve(r, a, b, c, d);                                                                                       \
@@ -77,7 +81,6 @@ TVK_TRIDIAGONAL(lanes_tridiagonal1, float)
     return x + solve(r, a, b, c, res);                                                                                \
   }
 TVK_TRIDIAGONAL_REFINED(lanes_tridiagonal_refined, lanes_tridiagonal3, vec3)
-TVK_TRIDIAGONAL_REFINED(lanes_tridiagonal_refined1, lanes_tridiagonal1, float)
 
 // ---- the lane's rest data, read once per frame ----------------------------------------------------------------------
 
@@ -204,7 +207,7 @@ void newton_lanes(uint v, LaneRest lr, float reach_floor, float weight, inout ve
       rc = v + 2u < N ? -wb * dot(gv, gr) : 0.0;
     }
   }
-  float l = lanes_tridiagonal_refined1(v, ra, rb, rc, rd);
+  float l = lanes_tridiagonal1(v, ra, rb, rc, rd);
   lanes_put(v, vec4(l, 0.0, 0.0, 0.0), vec4(0.0), vec4(0.0));
   float ll = lanes_get0(lane_before(v)).x;
   vec3 dx = vec3(0.0);
