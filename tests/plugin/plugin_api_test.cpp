@@ -2,6 +2,8 @@
 #include "sim_harness.hpp"
 
 #include <tressvk/asset_io.hpp>
+#include <tressvk/host/glue.hpp>
+#include <tressvk/reference/near_duplicates.hpp>
 
 #include <catch2/catch_test_macros.hpp>
 
@@ -28,6 +30,34 @@ TEST_CASE("an asset loads from memory and reports its counts", "[plugin]") {
   REQUIRE(tressvk_get_memory_usage(ctx.get(), &usage) == TVK_SUCCESS);
   CHECK(usage.device_bytes >= 40ull * hair.vertices_per_strand * 16);
   tressvk_destroy_asset(a);
+}
+
+namespace {
+std::vector<std::string> g_warnings;
+void keep_warnings(TvkMessageSeverity severity, const char* message, void*) {
+  if (severity == TVK_MESSAGE_WARNING) g_warnings.emplace_back(message);
+}
+}  // namespace
+
+// Strands with sub-micrometre segments (hard case 8's groom) are respaced on load (model::kRespaceBelowRel), and the
+// host is told; a baked-like groom loads without that warning.
+TEST_CASE("an asset with sub-micrometre segments loads with a warning that its strands were respaced", "[plugin]") {
+  TvkContextCreateInfo info = host::context_info(test::device());
+  info.message_callback = keep_warnings;
+  TvkContext raw = nullptr;
+  REQUIRE(tressvk_create_context(&info, &raw) == TVK_SUCCESS);
+  test::PluginContext ctx(raw);
+  g_warnings.clear();
+  TvkAsset plain = test::load_asset(ctx.get(), test::small_groom("straight", 8));
+  CHECK(g_warnings.empty());
+  TvkAsset dup =
+      test::load_asset(ctx.get(), tressvk::reference::with_near_duplicate_vertices(test::small_groom("straight", 8)));
+  REQUIRE(g_warnings.size() == 1);
+  INFO(g_warnings[0]);
+  CHECK(g_warnings[0].find("3 strands") != std::string::npos);
+  CHECK(g_warnings[0].find("respaced") != std::string::npos);
+  tressvk_destroy_asset(plain);
+  tressvk_destroy_asset(dup);
 }
 
 TEST_CASE("a corrupt asset is refused with a message naming the problem", "[plugin]") {
