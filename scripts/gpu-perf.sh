@@ -28,9 +28,10 @@ if [ ! -f "$MOHAWK" ] && [ -f "$RATBOY" ]; then
 fi
 
 perf() {  # json name, path (TRESSVK_SIM_PATH: default = unset, runs, fused, passes), then bench arguments; path
-          # "compliant" = the compliant model's lane kernel
+          # "compliant" = the compliant model's lane kernel, "conservative" its conservative local shape
   local name=$1 path=$2 model= run=; shift 2
   [ "$path" = compliant ] && { model=compliant; path=; }
+  [ "$path" = conservative ] && { model=conservative; path=; }
   [ "$path" = default ] && path=
   case "$path" in runs4) path=runs run=4 ;; runs8) path=runs run=8 ;; esac
   TRESSVK_SIM_MODEL=$model TRESSVK_SIM_PATH=$path TRESSVK_SIM_RUN=$run timeout "${RUN_TIMEOUT:-150}" "$BENCH" perf "$@" --json "$OUT/$name.json" --table-row 2> "$OUT/$name.err" ||

@@ -87,6 +87,7 @@ TVK_TRIDIAGONAL_REFINED(lanes_tridiagonal_refined, lanes_tridiagonal3, vec3)
 // ---- the lane's rest data, read once per frame ----------------------------------------------------------------------
 
 struct LaneRest {
+  float arc;       // rest arc length of the vertex from the root / strand rest length (the global shape's range)
   float len;       // rest length of the edge leaving the vertex (0 for the tip and padding lanes)
   float len_left;  // of the edge arriving (0 for the root)
   bool turns;      // the local-shape frame turns onto the edge leaving the vertex (rest_info z of the vertex after)
@@ -101,6 +102,7 @@ LaneRest lane_rest(uint b, uint v) {
   r.turns = false;
   r.edge = vec3(0.0);
   r.frame_edge = -1;
+  r.arc = v < N ? rest_info[b + v * TVK_BLOCK].y : 0.0;
   if (v + 1u < N) {
     r.len = rest_info[b + v * TVK_BLOCK].x;
     r.turns = rest_info[b + (v + 1u) * TVK_BLOCK].z != 0.0;
@@ -121,7 +123,190 @@ LaneRest lane_rest(uint b, uint v) {
 
 // ---- the compliant model's passes ------------------------------------------------------------------------------------
 
+// Both local shapes' first step: every edge's direction u (constraint_direction), then each constraint's target: its
+// skinned rest edge turned by the minimal rotation of the last edge before it that turns the frame, from that edge's
+// skinned rest direction onto its current one. Each lane makes the rotation of its own edge; a lane takes the one of
+// its frame edge, or of the frame edge before that while an edge is too short to have a direction (jf: the edge it
+// took, -1: none). np, nq: the next vertex's position and history.
+struct ShapeTarget {
+  vec4 np;
+  vec3 nq;
+  vec3 u;
+  vec3 target;
+  int jf;
+};
+ShapeTarget lanes_shape_target(uint v, LaneRest lr, bool row, vec3 rest_dir) {
+  ShapeTarget t;
+  lanes_put(v, L_pos, L_prev, vec4(0.0));
+  t.np = lanes_get0(lane_after(v));
+  t.nq = lanes_get1(lane_after(v)).xyz;
+  t.u = vec3(0.0);
+  if (v + 1u < N) t.u = constraint_direction(t.np.xyz - L_pos.xyz, t.nq - L_prev.xyz, lr.len);
+  bool turns_here = lr.turns && dot(t.u, t.u) > 0.0;
+  vec4 turn = turns_here ? quat_from_two_unit(normalize(rest_dir), t.u) : vec4(0, 0, 0, 1);
+  lanes_put(v, turn, vec4(turns_here ? 1.0 : 0.0, float(lr.frame_edge), 0.0, 0.0), vec4(0.0));
+  vec4 q = vec4(0, 0, 0, 1);
+  int j = row ? lr.frame_edge : -1;
+  t.jf = -1;
+  for (uint round = 0u; round < N; ++round) {
+    uint src = j >= 0 ? uint(j) : v;
+    vec4 qj = lanes_get0(src);
+    vec4 info = lanes_get1(src);
+    if (j >= 0) {
+      if (info.x > 0.5) {
+        q = qj;
+        t.jf = j;
+        j = -1;
+      } else {
+        j = int(info.y);
+      }
+    }
+    if (!lanes_any(v, j >= 0)) break;
+  }
+  t.target = row ? quat_rotate(q, rest_dir) : vec3(0.0);
+  return t;
+}
+
+#ifndef TVK_LANES_SUBGROUP
+const float kConservativeCalibration = 0.080;    // model::kConservativeCalibration
+const float kConservativeDampingScale = 0.3;     // model::kConservativeDampingScale
+
+// Lane 0 of the strand: the banded Cholesky factorisation of s_band in place (row r holds A(r, r - k), k = 0..8), then
+// s_x = A^-1 s_rhs; factor false reuses the factorisation. The other lanes wait at the barrier after it.
+void band_solve(uint dim, bool factor) {
+  if (factor) {
+    for (uint r = 0u; r < dim; ++r) {
+      uint c0 = r > 8u ? r - 8u : 0u;
+      for (uint c = c0; c <= r; ++c) {
+        float sum = s_band[r * 9u + (r - c)];
+        uint k0 = max(c0, c > 8u ? c - 8u : 0u);
+        for (uint k = k0; k < c; ++k) sum -= s_band[r * 9u + (r - k)] * s_band[c * 9u + (c - k)];
+        s_band[r * 9u + (r - c)] = c < r ? sum / s_band[c * 9u] : sqrt(max(sum, 1e-30));
+      }
+    }
+  }
+  for (uint r = 0u; r < dim; ++r) {
+    float sum = s_rhs[r];
+    for (uint k = r > 8u ? r - 8u : 0u; k < r; ++k) sum -= s_band[r * 9u + (r - k)] * s_x[k];
+    s_x[r] = sum / s_band[r * 9u];
+  }
+  for (uint r = dim; r-- > 0u;) {
+    float sum = s_x[r];
+    for (uint k = r + 1u; k < min(dim, r + 9u); ++k) sum -= s_band[k * 9u + (k - r)] * s_x[k];
+    s_x[r] = sum / s_band[r * 9u];
+  }
+}
+
+// The conservative local shape (the reference's local_shape_conservative, LengthModel::kConservative): the compliant
+// model's constraints x_{v+1} - x_v - T_v with their full gradient, dT/de = ((T.u) I - u T^T) / |e| on the edge before
+// (where that edge is the frame edge), so that every constraint touches x_{v-1}, x_v, x_{v+1} and the system
+// (G W G^T + at / (1 + gamma), rows divided by 1 + gamma) is 3x3-block pentadiagonal. Each lane assembles its row's
+// three blocks left of the diagonal from its neighbours' and writes them to shared memory; lane 0 solves the banded
+// system (Cholesky) and once more for the residual the lanes form; the lanes then move their vertex by W G^T dlambda.
+// Shared-memory variant only (one strand per workgroup: the barriers are uniform).
+void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp) {
+  vec4 skin = skin_rotation(g);
+  bool row = v >= 1u && v + 1u < N;
+  float rel = row ? kCalibrationSegments * lr.len / strand_rest_length(g) : 0.0;
+  float at = gp.reserved0 * kConservativeCalibration * rel * rel * rel * rel;
+  float gm = row ? kConservativeDampingScale * gp.reserved1 * min(1.0 / (rel * rel), kBendDampingGrowthCap) : 0.0;
+  // The vertex's weight: 0 pinned, 1 free, 1 - f where the global spring pulls it (the reference's shape_weight).
+  float w_self = 0.0;
+  if (v < N && L_pos.w > 0.0) {
+    w_self = TVK_HAS(TVK_FEATURE_GLOBAL_SHAPE) && gp.global_stiffness > 0.0 && lr.arc <= gp.global_range
+                 ? 1.0 - gp.global_stiffness
+                 : 1.0;
+  }
+  const uint dim = 3u * (N - 2u);
+  const mat3 I3 = mat3(1.0);
+  vec3 lam = vec3(0.0);
+  vec3 rest_dir = quat_rotate(skin, lr.edge);
+  for (uint it = 0u; it < gp.local_iterations; ++it) {
+    // 1. Directions and targets, as local_shape_lanes; jf: the frame edge the target came from.
+    ShapeTarget st = lanes_shape_target(v, lr, row, rest_dir);
+    vec4 np = st.np;
+    vec3 u = st.u, target = st.target;
+    int jf = st.jf;
+    // 2. The reaction's Jacobian, from the edge before (its direction and length) and this row's target.
+    float elen = v + 1u < N ? length(np.xyz - L_pos.xyz) : 0.0;
+    lanes_put(v, vec4(u, elen), vec4(L_pos.xyz - L_prev.xyz, w_self), vec4(0.0));
+    vec4 before0 = lanes_get0(lane_before(v));
+    vec4 before1 = lanes_get1(lane_before(v));
+    vec4 after1 = lanes_get1(lane_after(v));
+    float w_prev = v >= 1u ? before1.w : 0.0;
+    float w_next = v + 1u < N ? after1.w : 0.0;
+    bool react = row && jf == int(v) - 1;
+    mat3 J = mat3(0.0);
+    if (react) J = (dot(target, before0.xyz) * I3 - outerProduct(before0.xyz, target)) / max(before0.w, 0.5 * lr.len_left);
+    bool live = row && (w_self > 0.0 || w_next > 0.0 || (react && w_prev > 0.0)) && !isinf(at) && !isnan(at);
+    vec3 delta_self = L_pos.xyz - L_prev.xyz;
+    vec3 rate = after1.xyz - delta_self - J * (delta_self - before1.xyz);
+    vec3 rhs = live ? -(np.xyz - L_pos.xyz - target + at * lam + gm * rate) / (1.0 + gm) : vec3(0.0);
+    // 3. This row's blocks: D0 (v, v), D1 (v, v - 1), D2 (v, v - 2); the rows before it from their lanes.
+    lanes_put(v, vec4(J[0], live ? 1.0 : 0.0), vec4(J[1], 0.0), vec4(J[2], 0.0));
+    vec4 jb0 = lanes_get0(lane_before(v));
+    mat3 Jp = mat3(jb0.xyz, lanes_get1(lane_before(v)).xyz, lanes_get2(lane_before(v)).xyz);
+    bool live_1 = v >= 2u && jb0.w > 0.5;
+    bool live_2 = v >= 3u && lanes_get0(v >= 2u ? v - 2u : 0u).w > 0.5;
+    mat3 D0 = I3, D1 = mat3(0.0), D2 = mat3(0.0);
+    if (live) {
+      D0 = w_next * I3 + w_self * (I3 + J) * transpose(I3 + J) + w_prev * J * transpose(J) + (at / (1.0 + gm)) * I3;
+      if (live_1) D1 = -w_self * (I3 + J) - w_prev * J * (I3 + transpose(Jp));
+      if (live_2) D2 = w_prev * J;
+    }
+    if (row) {
+      for (uint i = 0u; i < 3u; ++i) {
+        uint r = 3u * (v - 1u) + i;
+        for (uint k = 0u; k < 9u; ++k) s_band[r * 9u + k] = 0.0;
+        for (uint c = 0u; c <= i; ++c) s_band[r * 9u + (i - c)] = D0[c][i];
+        if (v >= 2u)
+          for (uint c = 0u; c < 3u; ++c) s_band[r * 9u + (3u + i - c)] = D1[c][i];
+        if (v >= 3u)
+          for (uint c = 0u; c < 3u; ++c) s_band[r * 9u + (6u + i - c)] = D2[c][i];
+        s_rhs[r] = rhs[i];
+      }
+    }
+    barrier();
+    if (v == 0u) band_solve(dim, true);
+    barrier();
+    // 4. One refinement: the residual from the lanes' blocks (the upper ones are the next rows' transposed), solved
+    // again with the same factorisation.
+    vec3 x = row ? vec3(s_x[3u * (v - 1u)], s_x[3u * (v - 1u) + 1u], s_x[3u * (v - 1u) + 2u]) : vec3(0.0);
+    lanes_put(v, vec4(x, 0.0), vec4(transpose(D1) * x, 0.0), vec4(transpose(D2) * x, 0.0));
+    vec3 x_1 = v >= 2u ? lanes_get0(lane_before(v)).xyz : vec3(0.0);
+    vec3 x_2 = v >= 3u ? lanes_get0(v - 2u).xyz : vec3(0.0);
+    vec3 up_1 = v + 2u < N ? lanes_get1(lane_after(v)).xyz : vec3(0.0);
+    vec3 up_2 = v + 3u < N ? lanes_get2(v + 2u < LANES ? v + 2u : v).xyz : vec3(0.0);
+    vec3 res = rhs - (D0 * x + D1 * x_1 + D2 * x_2 + up_1 + up_2);
+    barrier();
+    if (row) {
+      for (uint i = 0u; i < 3u; ++i) s_rhs[3u * (v - 1u) + i] = res[i];
+    }
+    barrier();
+    if (v == 0u) band_solve(dim, false);
+    barrier();
+    vec3 dl = row ? x + vec3(s_x[3u * (v - 1u)], s_x[3u * (v - 1u) + 1u], s_x[3u * (v - 1u) + 2u]) : vec3(0.0);
+    barrier();  // s_x is read before the next iteration's solve writes it
+    // 5. x += W G^T dlambda: rows v - 1 (I), v (-I - J_v), v + 1 (J_{v+1}).
+    lanes_put(v, vec4(dl, 0.0), vec4(transpose(J) * dl, 0.0), vec4(0.0));
+    vec3 dl_before = lanes_get0(lane_before(v)).xyz;
+    vec3 react_after = lanes_get1(lane_after(v)).xyz;
+    if (v >= 1u && v < N && w_self > 0.0) {
+      vec3 move = (v >= 2u ? dl_before : vec3(0.0)) - dl - transpose(J) * dl + (v + 2u < N ? react_after : vec3(0.0));
+      L_pos = vec4(L_pos.xyz + w_self * move, L_pos.w);
+    }
+    if (row) lam += dl;
+  }
+}
+#endif
+
 void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
+#ifndef TVK_LANES_SUBGROUP
+  if (TVK_HAS(TVK_FEATURE_CONSERVATIVE)) {
+    local_shape_lanes_conservative(g, v, lr, gp);
+    return;
+  }
+#endif
   vec4 skin = skin_rotation(g);
   bool row = v >= 1u && v + 1u < N;
   float rel = row ? kCalibrationSegments * lr.len / strand_rest_length(g) : 0.0;
@@ -130,35 +315,10 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);  // this lane's skinned rest edge
   for (uint it = 0u; it < gp.local_iterations; ++it) {
-    // 1. Edge directions, then each constraint's target: its skinned rest edge turned by the minimal rotation of the
-    // last edge before it that turns the frame, from that edge's skinned rest direction onto its current one. Each
-    // lane makes the rotation of its own edge; a lane takes the one of its frame edge, or of the frame edge before
-    // that while an edge is too short to have a direction.
-    lanes_put(v, L_pos, L_prev, vec4(0.0));
-    vec4 np = lanes_get0(lane_after(v));
-    vec3 nq = lanes_get1(lane_after(v)).xyz;
-    vec3 u = vec3(0.0);
-    if (v + 1u < N) u = constraint_direction(np.xyz - L_pos.xyz, nq - L_prev.xyz, lr.len);
-    bool turns_here = lr.turns && dot(u, u) > 0.0;
-    vec4 turn = turns_here ? quat_from_two_unit(normalize(rest_dir), u) : vec4(0, 0, 0, 1);
-    lanes_put(v, turn, vec4(turns_here ? 1.0 : 0.0, float(lr.frame_edge), 0.0, 0.0), vec4(0.0));
-    vec4 q = vec4(0, 0, 0, 1);
-    int j = row ? lr.frame_edge : -1;
-    for (uint round = 0u; round < N; ++round) {
-      uint src = j >= 0 ? uint(j) : v;
-      vec4 qj = lanes_get0(src);
-      vec4 info = lanes_get1(src);
-      if (j >= 0) {
-        if (info.x > 0.5) {
-          q = qj;
-          j = -1;
-        } else {
-          j = int(info.y);
-        }
-      }
-      if (!lanes_any(v, j >= 0)) break;
-    }
-    vec3 target = row ? quat_rotate(q, rest_dir) : vec3(0.0);
+    // 1. Edge directions, then each constraint's target (lanes_shape_target).
+    ShapeTarget st = lanes_shape_target(v, lr, row, rest_dir);
+    vec4 np = st.np;
+    vec3 nq = st.nq, target = st.target;
     // 2. All constraints at once, the targets held.
     float ra = 0.0, rb = 1.0, rc = 0.0;
     vec3 rd = vec3(0.0);

@@ -194,6 +194,16 @@ TEST_CASE("Ratboy at 8 vertices and 60 Hz steps matches the reference through 20
   check_scene(r);
 }
 
+// One pipeline's worth of the main check: curly strands of 32 vertices through shake. ctest runs it on the
+// conservative local shape's lane kernel (TRESSVK_SIM_MODEL=conservative, whose pipelines take a minute each to
+// compile on lavapipe); on the default path every scene test above covers it.
+TEST_CASE("curly strands of 32 vertices match the reference through shake", "[plugin][simulation]") {
+  const SceneResult r = run_scene(test::small_groom("curly", 8), "shake", 8);
+  INFO("step error " << r.step_error_max << ", stretch max " << r.stretch_max << ", tangent error "
+                     << r.tangent_error_max);
+  check_scene(r);
+}
+
 TEST_CASE("passes are recorded only for what the scene uses", "[plugin][simulation]") {
   const asset::HairAsset hair = test::small_groom("straight", 16);
   SECTION("settle: no wind, collision or follow pass") {

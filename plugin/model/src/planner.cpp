@@ -513,9 +513,17 @@ constexpr double kBendDampingTime = 0.005;
 bool compliant_model_from_environment() {
   static const bool compliant = [] {
     const char* v = std::getenv("TRESSVK_SIM_MODEL");
-    return v != nullptr && std::string_view(v) == "compliant";
+    return v != nullptr && (std::string_view(v) == "compliant" || std::string_view(v) == "conservative");
   }();
   return compliant;
+}
+
+bool conservative_model_from_environment() {
+  static const bool conservative = [] {
+    const char* v = std::getenv("TRESSVK_SIM_MODEL");
+    return v != nullptr && std::string_view(v) == "conservative";
+  }();
+  return conservative;
 }
 
 double compliant_global_fraction(double s, double h) {

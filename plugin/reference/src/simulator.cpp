@@ -14,7 +14,8 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
     : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
   asset_inv_mass_ = rest_.inv_mass;
   set_params(group_params);
-  if (compliant_model_from_environment()) length_model_ = LengthModel::kCompliant;
+  if (compliant_model_from_environment())
+    length_model_ = conservative_model_from_environment() ? LengthModel::kConservative : LengthModel::kCompliant;
   const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
   pos_.assign(n_all, Vec3{});
   tangent_.assign(n_all, Vec3{});
@@ -221,13 +222,13 @@ double compliant_bend_alpha(double s_step, double edge, double strand_length, do
 // kConservative's compliance per edge: its constraints carry the bending moment (angle at v = alpha M / a^2), so
 // a^4 / B keeps the sag independent of N; kConservativeCalibration puts the cantilever's sag (L 0.2 m, 2 root vertices
 // pinned, defaults, 240 Hz, 2 iterations, 32 vertices) at kCompliant's (tressvk_accuracy_probe cantilever).
-constexpr double kConservativeCalibration = 0.080;  // times compliant_bend_alpha_base (kBendCalibration 5.4)
+// (kConservativeCalibration: planner.hpp, times compliant_bend_alpha_base, kBendCalibration 5.4.)
 // kConservative's damping: kCompliant's damping time per edge times this (1.5 ms at the calibration edge), on the
 // constraints' own rate G (x - prev) (internal: a rigid turn is not damped). kCompliant needs 5 ms to take out the
 // energy its held targets put in; here the curly groom's trajectory converges as h halves with 1.5 ms, and more
 // amplifies rounding on the straight groom's upright strands (a 1e-7 perturbation after 60 frames of shake: 1.1e-7 at
 // 0.3, 3.8e-7 at 0.5 with 1.5e-6 on the way, 1.4e-5 at 0.7, 1.4e-4 at 1; tressvk_accuracy_probe perturb).
-constexpr double kConservativeDampingScale = 0.3;
+// (kConservativeDampingScale: planner.hpp.)
 double conservative_bend_alpha(double s_step, double edge, double strand_length, double h) {
   const double rel = kCalibrationSegments * edge / strand_length;
   return kConservativeCalibration * compliant_bend_alpha_base(s_step, h) * (rel * rel * rel * rel);
@@ -476,7 +477,10 @@ void Simulator::local_shape_conservative(const Substep& st) {
         gb[0] = {v + 1, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
         gb[1] = {v, {-1, 0, 0, 0, -1, 0, 0, 0, -1}};
         grad_count[v] = 2;
-        if (j >= 0) {
+        // The reaction is taken where the frame edge is the edge just before (everywhere on an evenly spaced strand;
+        // a frame carried over a short edge keeps its target held, as kCompliant): the system stays pentadiagonal,
+        // as the GPU solves it.
+        if (j >= 0 && static_cast<uint32_t>(j) + 1 == v) {
           // dT/de = ((T.u) I - u T^T) / |e| (|e| at least half its rest length: a compressed edge's direction is
           // blended, constraint_direction).
           const Vec3 u = frame_dir_[j], t = targets_[v];
@@ -494,10 +498,8 @@ void Simulator::local_shape_conservative(const Substep& st) {
           grad_count[v] = 4;
         }
       }
-      // 2. The banded system. Half bandwidth: 3 x the largest distance between coupled constraints + 2.
-      uint32_t reach = 0;
-      for (uint32_t v = 1; v + 1 < n; ++v)
-        if (frame_edge[v] >= 0) reach = std::max(reach, v - static_cast<uint32_t>(frame_edge[v]));
+      // 2. The banded system: constraints u and v share a free vertex where |u - v| <= 2 (half bandwidth 8).
+      const uint32_t reach = 1;
       const size_t p = 3 * size_t{std::min(reach + 1, m - 1)} + 2;  // |u - v| <= reach + 1
       band_.assign(dim * (p + 1), 0.0);
       band_rhs_.assign(dim, 0.0);

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "tressvk_sim_spirv.h"
+#include <tressvk/model/planner.hpp>
 
 namespace tressvk::sim {
 namespace {
@@ -122,6 +123,7 @@ PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
   use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
   use.features |= kLanesVariantBit;
   if (subgroup) use.features |= kSharedVariantBit;  // keeps the two lane variants' pipelines apart
+  if (model::conservative_model_from_environment()) use.features |= kFeatureConservative;
   use.name = (subgroup ? "frame(lanes,subgroup)" : "frame(lanes)") + use.name.substr(5);
   return use;
 }

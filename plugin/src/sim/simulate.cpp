@@ -159,9 +159,12 @@ struct InstanceWork {
 // simulation path (TRESSVK_SIM_PATH) the run kernel, the one-thread kernel (its shared-memory variant only where the
 // strand block fits) or one pass per dispatch.
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
+  // The conservative local shape solves its banded system in shared memory, one strand per workgroup: the shared
+  // variant of the lane kernel.
   if (model::compliant_model_from_environment())
     return {sim::frame_lanes_pass_use(
-        terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
+        terms, !model::conservative_model_from_environment() &&
+                   sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
                    sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size_min,
                                            ctx.subgroup_shuffle_compute))};
   const sim::SimPath path = sim::sim_path_from_environment();

@@ -57,6 +57,7 @@ enum Feature : uint32_t {
   kFeaturePinnedTips = 32u,  // length: some strand is pinned at its tip too (the tridiagonal length solve)
   kFeatureVsp = 64u,         // fused frame kernel only (sim/fused.hpp): run VSP
   kFeatureLocalShape = 128u, // fused frame kernel only: run local shape constraints
+  kFeatureConservative = 256u,  // lane kernel only: the conservative local shape
 };
 
 // Vertex layout of every per-vertex buffer (positions, tangents, the histories, the static rest data): strands in
@@ -151,7 +152,8 @@ static_assert(kSpecWorkgroupSize == TVK_SPEC_WORKGROUP_SIZE && kSpecVerticesPerS
 static_assert(kFeatureGlobalShape == TVK_FEATURE_GLOBAL_SHAPE && kFeatureWind == TVK_FEATURE_WIND &&
               kFeatureCollision == TVK_FEATURE_COLLISION && kFeatureSkinning == TVK_FEATURE_SKINNING &&
               kFeatureMaxSpeed == TVK_FEATURE_MAX_SPEED && kFeaturePinnedTips == TVK_FEATURE_PINNED_TIPS &&
-              kFeatureVsp == TVK_FEATURE_VSP && kFeatureLocalShape == TVK_FEATURE_LOCAL_SHAPE);
+              kFeatureVsp == TVK_FEATURE_VSP && kFeatureLocalShape == TVK_FEATURE_LOCAL_SHAPE &&
+              kFeatureConservative == TVK_FEATURE_CONSERVATIVE);
 static_assert(vertex_index(37, 5, 9) == TVK_VERTEX_INDEX(37u, 5u, 9u));
 static_assert(kStepReset == TVK_STEP_RESET && kStepMoveState == TVK_STEP_MOVE_STATE &&
               kSkinVec4PerBone == TVK_SKIN_VEC4 && kMaxCapsules == TVK_STEP_MAX_CAPSULES &&

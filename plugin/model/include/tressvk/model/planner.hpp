@@ -168,6 +168,14 @@ sim::GroupParams to_gpu(const GroupStep& group);
 // TRESSVK_SIM_MODEL=compliant selects it in the plugin (the lane-parallel frame kernel, shaders/sim/frame_lanes.comp)
 // and as the reference Simulator's default, so that every simulation test compares like with like. Read once.
 bool compliant_model_from_environment();
+// TRESSVK_SIM_MODEL=conservative: the compliant model with the conservative local shape (the reference's
+// LengthModel::kConservative; the lane kernel's conservative variant, lanes_compliant.glsl). compliant_model_from_
+// environment() is true for it too (the same uploads and length solve). Read once.
+bool conservative_model_from_environment();
+// kConservative's compliance per edge: compliant_bend_alpha_base x this x (31 a / L)^4; its damping time: the
+// compliant model's per-edge time x kConservativeDampingScale (reference simulator.cpp, lanes_compliant.glsl).
+inline constexpr double kConservativeCalibration = 0.080;
+inline constexpr double kConservativeDampingScale = 0.3;
 // Global shape: the spring's fraction k h^2 / (1 + k h^2) at step h, k = s / ((1 - s) h0^2), h0 = 1/240 s.
 double compliant_global_fraction(double s, double h);
 // Local shape: alpha / h^2 of an edge of the calibration length (the strand's length / 31) at step h, from the

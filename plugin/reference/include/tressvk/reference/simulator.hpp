@@ -56,13 +56,15 @@ class Simulator {
   // > 1e-3), with no serial clean-up. Measured (docs/accuracy.md): cantilever sag within 10 % over N 16-128,
   // 120-480 Hz and 1-8 iterations (60 Hz: +12.7 %), where the follow-the-leader model spreads over 6x.
   //
-  // kConservative (reference only, opt-in; no GPU twin yet): kCompliant with a conservative local shape. kCompliant
+  // kConservative (opt-in: set_model, or TRESSVK_SIM_MODEL=conservative; GPU twin: lanes_compliant.glsl,
+  // local_shape_lanes_conservative, slow): kCompliant with a conservative local shape. kCompliant
   // holds each constraint's target while it solves, so the target's dependence on the edge before it has no reaction:
   // the shape force is not the gradient of an energy, and it pumps energy into curls (the curly groom's trajectory
   // stops converging as h shrinks: docs/accuracy.md). Here the same constraints are solved with their full gradient:
   // C_v = x_{v+1} - x_v - T_v(x_{j+1} - x_j) (j: the frame edge before v), dT/de = ((T.u) I - u T^T) / |e| (the
   // target turns with its frame edge; its twist about that edge is left out), so each constraint touches four
-  // vertices and the system is block (3x3) pentadiagonal: a banded Cholesky solve per strand per iteration. The
+  // vertices and the system is block (3x3) pentadiagonal: a banded Cholesky solve per strand per iteration (the
+  // reaction is taken where the frame edge is the edge just before, so that the band is the same everywhere). The
   // constraint then carries the bending moment (not the shear load), so the compliance per edge is a^4 / B and the
   // calibration is its own (the same cantilever sag at 240 Hz, 2 iterations, 32 vertices).
   enum class LengthModel { kFollowTheLeader, kNewmark, kCompliant, kConservative };
