@@ -487,7 +487,7 @@ TEST_CASE("analytic: the curly rest pose is a fixed point (compliant model)", "[
 // 1.8e-4, 1.3e-4, 9.8e-5, 7.7e-5; kCompliant: 1.4e-2, 2.6e-2, 2.6e-2, 4.1e-2). The distances fall by 2.4x over the
 // four halvings, not the 5x the straight groom shows below: from 240 Hz on they are already at 1e-4 of the length, set
 // by bending waves that the 1.5 ms damping takes out slowly; the bar on each is 3e-4 (1.7x the largest).
-// Over 60-3840 Hz and 120 frames (tressvk_accuracy_probe convergence): 9.1e-4 ... 3.4e-5, 27x.
+// Over 60-3840 Hz and 120 frames (tressvk_accuracy_probe convergence): 7.2e-4 ... 5.0e-5, 14x.
 TEST_CASE("analytic: the curly groom's shaken trajectory converges as the step halves (conservative local shape)",
           "[reference][analytic]") {
   const std::vector<double> diffs =
