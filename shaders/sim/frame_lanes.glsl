@@ -105,13 +105,13 @@ float lanes_max(uint r, float x) {
   return m;
 }
 bool lanes_any(uint r, bool x) { return lanes_max(r, x ? 1.0 : 0.0) > 0.5; }
-// The conservative local shape's banded system (lanes_compliant.glsl): rows 3 (N - 2), 9 floats a row (the diagonal
-// and the 8 entries left of it), its right-hand side and solution; one float where the variant is not compiled.
+// The conservative local shape's block-pentadiagonal system (lanes_compliant.glsl): N - 2 block rows of three 3x3
+// blocks (the diagonal and the two left of it, then their factors) and a 3-vector (right-hand side, then solution);
+// one row where the variant is not compiled.
 const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
-const uint kBandRows = 1u + kConservativeOn * (3u * (N - 2u) - 1u);
-shared float s_band[kBandRows * 9u];
-shared float s_rhs[kBandRows];
-shared float s_x[kBandRows];
+const uint kBlockRows = 1u + kConservativeOn * (N - 3u);
+shared mat3 s_blk[kBlockRows * 3u];
+shared vec3 s_vec[kBlockRows];
 #endif
 
 float lanes_min(uint r, float x) { return -lanes_max(r, -x); }

@@ -171,29 +171,62 @@ ShapeTarget lanes_shape_target(uint v, LaneRest lr, bool row, vec3 rest_dir) {
 const float kConservativeCalibration = 0.080;    // model::kConservativeCalibration
 const float kConservativeDampingScale = 0.3;     // model::kConservativeDampingScale
 
-// Lane 0 of the strand: the banded Cholesky factorisation of s_band in place (row r holds A(r, r - k), k = 0..8), then
-// s_x = A^-1 s_rhs; factor false reuses the factorisation. The other lanes wait at the barrier after it.
-void band_solve(uint dim, bool factor) {
-  if (factor) {
-    for (uint r = 0u; r < dim; ++r) {
-      uint c0 = r > 8u ? r - 8u : 0u;
-      for (uint c = c0; c <= r; ++c) {
-        float sum = s_band[r * 9u + (r - c)];
-        uint k0 = max(c0, c > 8u ? c - 8u : 0u);
-        for (uint k = k0; k < c; ++k) sum -= s_band[r * 9u + (r - k)] * s_band[c * 9u + (c - k)];
-        s_band[r * 9u + (r - c)] = c < r ? sum / s_band[c * 9u] : sqrt(max(sum, 1e-30));
-      }
+// D(c) is inverted from its cofactors (one triangle: the block is symmetric). GLSL's inverse() here sent about one
+// strand in ten of Ratboy and the straight groom out of control on lavapipe and the H100 alike, from the first frame;
+// the cofactors of either triangle do not (not understood; the blocks were checked symmetric).
+mat3 inverse_sym(mat3 a) {
+  float c00 = a[1][1] * a[2][2] - a[1][2] * a[1][2];
+  float c01 = a[1][2] * a[0][2] - a[0][1] * a[2][2];
+  float c02 = a[0][1] * a[1][2] - a[1][1] * a[0][2];
+  float c11 = a[0][0] * a[2][2] - a[0][2] * a[0][2];
+  float c12 = a[0][1] * a[0][2] - a[0][0] * a[1][2];
+  float c22 = a[0][0] * a[1][1] - a[0][1] * a[0][1];
+  float id = 1.0 / (a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02);
+  return mat3(c00, c01, c02, c01, c11, c12, c02, c12, c22) * id;
+}
+
+// Lane 0 of the strand: the block LDL^T factorisation of the system in s_blk (block row c holds A(c, c), A(c, c - 1),
+// A(c, c - 2); they become D(c)^-1, L(c, c - 1), L(c, c - 2)), then s_vec = A^-1 s_vec; factor false reuses the
+// factorisation. The recurrences run in registers over a window of two block rows, so a row costs a few 3x3 products
+// and one 3x3 inverse and the loads of the next row do not wait on them (a scalar banded Cholesky read from shared
+// memory, its first form, spent most of its time waiting on those loads). The other lanes wait at the barrier after it.
+// NVIDIA H100, 240 / 60 Hz: Ratboy 5,242 -> 571 / 1,328 -> 161 us, curly 1 M 70,590 -> 7,327 / 17,752 -> 1,919 us.
+void block_solve(uint m, bool factor) {
+  mat3 di1 = mat3(0.0), di2 = mat3(0.0);  // D^-1 of rows c - 1, c - 2
+  mat3 l1p = mat3(0.0);                   // L(c - 1, c - 2)
+  vec3 z1 = vec3(0.0), z2 = vec3(0.0);    // z = L^-1 b of rows c - 1, c - 2
+  for (uint c = 0u; c < m; ++c) {
+    mat3 l1, l2;
+    if (factor) {
+      mat3 a0 = s_blk[3u * c], a1 = s_blk[3u * c + 1u], a2 = s_blk[3u * c + 2u];
+      mat3 w1 = a1 - a2 * transpose(l1p);  // L(c, c - 1) D(c - 1)
+      l2 = a2 * di2;
+      l1 = w1 * di1;
+      mat3 dd = a0 - l2 * transpose(a2) - l1 * transpose(w1);
+      mat3 di = inverse_sym(dd);
+      s_blk[3u * c] = di;
+      s_blk[3u * c + 1u] = l1;
+      s_blk[3u * c + 2u] = l2;
+      di2 = di1;
+      di1 = di;
+      l1p = l1;
+    } else {
+      l1 = s_blk[3u * c + 1u];
+      l2 = s_blk[3u * c + 2u];
     }
+    vec3 z = s_vec[c] - l2 * z2 - l1 * z1;
+    s_vec[c] = z;
+    z2 = z1;
+    z1 = z;
   }
-  for (uint r = 0u; r < dim; ++r) {
-    float sum = s_rhs[r];
-    for (uint k = r > 8u ? r - 8u : 0u; k < r; ++k) sum -= s_band[r * 9u + (r - k)] * s_x[k];
-    s_x[r] = sum / s_band[r * 9u];
-  }
-  for (uint r = dim; r-- > 0u;) {
-    float sum = s_x[r];
-    for (uint k = r + 1u; k < min(dim, r + 9u); ++k) sum -= s_band[k * 9u + (k - r)] * s_x[k];
-    s_x[r] = sum / s_band[r * 9u];
+  vec3 x1 = vec3(0.0), x2 = vec3(0.0);  // x of rows c + 1, c + 2
+  for (uint c = m; c-- > 0u;) {
+    mat3 u1 = c + 1u < m ? s_blk[3u * (c + 1u) + 1u] : mat3(0.0);
+    mat3 u2 = c + 2u < m ? s_blk[3u * (c + 2u) + 2u] : mat3(0.0);
+    vec3 x = s_blk[3u * c] * s_vec[c] - transpose(u1) * x1 - transpose(u2) * x2;
+    s_vec[c] = x;
+    x2 = x1;
+    x1 = x;
   }
 }
 
@@ -201,8 +234,8 @@ void band_solve(uint dim, bool factor) {
 // model's constraints x_{v+1} - x_v - T_v with their full gradient, dT/de = ((T.u) I - u T^T) / |e| on the edge before
 // (where that edge is the frame edge), so that every constraint touches x_{v-1}, x_v, x_{v+1} and the system
 // (G W G^T + at / (1 + gamma), rows divided by 1 + gamma) is 3x3-block pentadiagonal. Each lane assembles its row's
-// three blocks left of the diagonal from its neighbours' and writes them to shared memory; lane 0 solves the banded
-// system (Cholesky) and once more for the residual the lanes form; the lanes then move their vertex by W G^T dlambda.
+// three blocks left of the diagonal from its neighbours' and writes them to shared memory; lane 0 solves the block
+// system (LDL^T, block_solve) and once more for the residual the lanes form; the lanes then move their vertex by W G^T dlambda.
 // Shared-memory variant only (one strand per workgroup: the barriers are uniform).
 void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp) {
   vec4 skin = skin_rotation(g);
@@ -217,7 +250,6 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
                  ? 1.0 - gp.global_stiffness
                  : 1.0;
   }
-  const uint dim = 3u * (N - 2u);
   const mat3 I3 = mat3(1.0);
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);
@@ -255,38 +287,29 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
       if (live_2) D2 = w_prev * J;
     }
     if (row) {
-      for (uint i = 0u; i < 3u; ++i) {
-        uint r = 3u * (v - 1u) + i;
-        for (uint k = 0u; k < 9u; ++k) s_band[r * 9u + k] = 0.0;
-        for (uint c = 0u; c <= i; ++c) s_band[r * 9u + (i - c)] = D0[c][i];
-        if (v >= 2u)
-          for (uint c = 0u; c < 3u; ++c) s_band[r * 9u + (3u + i - c)] = D1[c][i];
-        if (v >= 3u)
-          for (uint c = 0u; c < 3u; ++c) s_band[r * 9u + (6u + i - c)] = D2[c][i];
-        s_rhs[r] = rhs[i];
-      }
+      s_blk[3u * (v - 1u)] = D0;
+      s_blk[3u * (v - 1u) + 1u] = D1;
+      s_blk[3u * (v - 1u) + 2u] = D2;
+      s_vec[v - 1u] = rhs;
     }
     barrier();
-    if (v == 0u) band_solve(dim, true);
+    if (v == 0u) block_solve(N - 2u, true);
     barrier();
     // 4. One refinement: the residual from the lanes' blocks (the upper ones are the next rows' transposed), solved
     // again with the same factorisation.
-    vec3 x = row ? vec3(s_x[3u * (v - 1u)], s_x[3u * (v - 1u) + 1u], s_x[3u * (v - 1u) + 2u]) : vec3(0.0);
+    vec3 x = row ? s_vec[v - 1u] : vec3(0.0);
     lanes_put(v, vec4(x, 0.0), vec4(transpose(D1) * x, 0.0), vec4(transpose(D2) * x, 0.0));
     vec3 x_1 = v >= 2u ? lanes_get0(lane_before(v)).xyz : vec3(0.0);
     vec3 x_2 = v >= 3u ? lanes_get0(v - 2u).xyz : vec3(0.0);
     vec3 up_1 = v + 2u < N ? lanes_get1(lane_after(v)).xyz : vec3(0.0);
     vec3 up_2 = v + 3u < N ? lanes_get2(v + 2u < LANES ? v + 2u : v).xyz : vec3(0.0);
     vec3 res = rhs - (D0 * x + D1 * x_1 + D2 * x_2 + up_1 + up_2);
+    if (row) s_vec[v - 1u] = res;  // every lane read its x above, before the exchange's barrier
     barrier();
-    if (row) {
-      for (uint i = 0u; i < 3u; ++i) s_rhs[3u * (v - 1u) + i] = res[i];
-    }
+    if (v == 0u) block_solve(N - 2u, false);
     barrier();
-    if (v == 0u) band_solve(dim, false);
-    barrier();
-    vec3 dl = row ? x + vec3(s_x[3u * (v - 1u)], s_x[3u * (v - 1u) + 1u], s_x[3u * (v - 1u) + 2u]) : vec3(0.0);
-    barrier();  // s_x is read before the next iteration's solve writes it
+    vec3 dl = row ? x + s_vec[v - 1u] : vec3(0.0);
+    // s_vec is read here before the next iteration writes it: the exchanges between (lanes_put) hold barriers.
     // 5. x += W G^T dlambda: rows v - 1 (I), v (-I - J_v), v + 1 (J_{v+1}).
     lanes_put(v, vec4(dl, 0.0), vec4(transpose(J) * dl, 0.0), vec4(0.0));
     vec3 dl_before = lanes_get0(lane_before(v)).xyz;
