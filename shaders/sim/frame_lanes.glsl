@@ -34,6 +34,20 @@ const uint kLanesC = kLanesB | (kLanesB >> 4u);
 #define LANES WORKGROUP_SIZE
 #endif
 
+// The conservative local shape's block-pentadiagonal systems (lanes_compliant.glsl), one per strand of the workgroup
+// (slot: the strand's place in it): N - 2 block rows of three 3x3 blocks (the diagonal and the two left of it, then
+// their factors) and a 3-vector (right-hand side, then solution); one row where the variant is not compiled.
+const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
+const uint kSlots = WORKGROUP_SIZE / LANES;          // strands per workgroup
+const uint kBlockRows = 1u + kConservativeOn * (kSlots * (N - 2u) - 1u);
+shared mat3 s_blk[kBlockRows * 3u];
+shared vec3 s_vec[kBlockRows];
+shared uint s_iters;  // the most local-shape iterations of the workgroup's strands
+uint tvk_slot_strand = 0u;
+// False for the lanes of a strand past the last guide (the subgroup variant's last workgroup): where the conservative
+// shape's barriers need every invocation of the workgroup, they run the last guide's steps and write nothing.
+bool tvk_active = true;
+
 // The lane's vertex state; integrate.glsl and vsp.glsl touch only their own vertex (i is always this lane's).
 vec4 L_pos;
 vec4 L_prev;
@@ -105,13 +119,6 @@ float lanes_max(uint r, float x) {
   return m;
 }
 bool lanes_any(uint r, bool x) { return lanes_max(r, x ? 1.0 : 0.0) > 0.5; }
-// The conservative local shape's block-pentadiagonal system (lanes_compliant.glsl): N - 2 block rows of three 3x3
-// blocks (the diagonal and the two left of it, then their factors) and a 3-vector (right-hand side, then solution);
-// one row where the variant is not compiled.
-const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
-const uint kBlockRows = 1u + kConservativeOn * (N - 3u);
-shared mat3 s_blk[kBlockRows * 3u];
-shared vec3 s_vec[kBlockRows];
 #endif
 
 float lanes_min(uint r, float x) { return -lanes_max(r, -x); }
@@ -156,7 +163,7 @@ void finish_lanes(uint g, uint b, uint v, GroupParams gp, bool write_tangents) {
     lanes_put(v, L_prev, vec4(0.0), vec4(0.0));
     vec3 q0 = lanes_get0(0u).xyz;
     if (vert) reset_vertex(g, b, v, q0, reset_back(g), strand_rigid(g, gp));
-    if (v == 0u) atomicAdd(counters[pc.counter_index], 1u);
+    if (v == 0u && tvk_active) atomicAdd(counters[pc.counter_index], 1u);
   }
 
   if (write_tangents) {
@@ -187,7 +194,7 @@ void finish_lanes(uint g, uint b, uint v, GroupParams gp, bool write_tangents) {
       }
       if (!lanes_any(v, j >= 0)) break;
     }
-    if (vert) {
+    if (vert && tvk_active) {
       if (!found) last = quat_rotate(root_now, vec3(1, 0, 0));
       tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
     }
@@ -205,12 +212,18 @@ void main() {
   // covers every strand of the workgroup once.
   uint v = gl_SubgroupInvocationID & (LANES - 1u);
   tvk_lane_base = gl_SubgroupInvocationID - v;
-  uint g = gl_WorkGroupID.x * (WORKGROUP_SIZE / LANES) + (gl_SubgroupID * gl_SubgroupSize + tvk_lane_base) / LANES;
+  tvk_slot_strand = (gl_SubgroupID * gl_SubgroupSize + tvk_lane_base) / LANES;
+  uint g = gl_WorkGroupID.x * kSlots + tvk_slot_strand;
 #else
   uint v = gl_LocalInvocationID.x;
   uint g = gl_WorkGroupID.x;
 #endif
-  if (g >= pc.guide_count || pc.step_count == 0u) return;  // uniform over the strand's lanes
+  if (pc.step_count == 0u) return;  // uniform over the dispatch
+  if (g >= pc.guide_count) {        // uniform over the strand's lanes
+    if (kConservativeOn == 0u) return;
+    tvk_active = false;
+    g = pc.guide_count - 1u;
+  }
   uint b = strand_base(g);
   bool vert = v < N;
   uint i = b + v * TVK_BLOCK;
@@ -243,18 +256,18 @@ void main() {
     if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_lanes(g, v, lr, gp);
     length_lanes(g, b, v, lr, gp, s + 1u == pc.step_count);
   }
-  if (vert) {
+  if (vert && tvk_active) {
     pos[i] = L_pos;
     prev[i] = L_prev;
     if (TVK_HAS(TVK_FEATURE_VSP)) prevprev[i] = L_prevprev;
   }
-  if (v == 0u) anchor[g] = L_anchor;
+  if (v == 0u && tvk_active) anchor[g] = L_anchor;
 
   if (K > 0u) {
     vec4 root_now = lanes_root_frame(g, b, v);
     float tip_separation = gp.tip_separation;
     uint G = pc.guide_count;
-    for (uint f = 0u; f < K && vert; ++f) {
+    for (uint f = 0u; f < K && vert && tvk_active; ++f) {
       vec3 offset = quat_rotate(root_now, follow_offset[g * K + f].xyz);  // follow_root_offset, the lanes' root frame
       uint dst = vertex_index(G + f * G + g, v);
       pos[dst] = follow_vertex(L_pos, offset, tip_separation, v);

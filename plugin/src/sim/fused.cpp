@@ -50,6 +50,10 @@ constexpr uint64_t kRuns4MaxGuideVertices = 160u * 1024u;
 constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
+// With the conservative local shape: 256 / LANES strands a workgroup, whose systems one subgroup solves side by side
+// (lanes_compliant.glsl, block_solve). Its shared memory: per strand N - 2 block rows of three 3x3 blocks and a 3-vector.
+constexpr uint32_t kConservativeSubgroupWorkgroup = 256;
+constexpr uint32_t kConservativeRowBytes = 3 * 36 + 12;
 
 uint32_t lanes_for(uint32_t vertices_per_strand, uint32_t at_least) {
   uint32_t lanes = at_least;
@@ -118,6 +122,14 @@ bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bo
   return strand_fits_subgroup(lanes_for(vertices_per_strand, 1), subgroup_size, shuffle_compute);
 }
 
+bool conservative_fits_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, uint32_t max_invocations,
+                                uint32_t max_shared_bytes) {
+  const uint32_t wg = std::max(subgroup_size, kConservativeSubgroupWorkgroup);
+  const uint64_t bytes =
+      uint64_t{wg / lanes_for(vertices_per_strand, 1)} * (vertices_per_strand - 2) * kConservativeRowBytes + 4;
+  return wg <= max_invocations && bytes <= max_shared_bytes;
+}
+
 PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
   PassUse use = frame_pass_use(terms, false);
   use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
@@ -178,6 +190,8 @@ uint32_t strand_lanes(const PassInfo* info, uint32_t vertices_per_strand) {
 }  // namespace
 
 uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size) {
+  if (info == &kFrameLanesSubgroup && model::conservative_model_from_environment())
+    return std::max(subgroup_size, kConservativeSubgroupWorkgroup);
   if (is_subgroup_lanes(info)) return std::max(subgroup_size, kLanesSubgroupWorkgroup);
   return lanes_for(vertices_per_strand, 32);
 }

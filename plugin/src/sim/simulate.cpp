@@ -159,14 +159,20 @@ struct InstanceWork {
 // simulation path (TRESSVK_SIM_PATH) the run kernel, the one-thread kernel (its shared-memory variant only where the
 // strand block fits) or one pass per dispatch.
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
-  // The conservative local shape solves its banded system in shared memory, one strand per workgroup: the shared
-  // variant of the lane kernel.
-  if (model::compliant_model_from_environment())
+  // The conservative local shape keeps its systems in shared memory: the subgroup variant only where its workgroup
+  // of 256 invocations and their systems fit the device.
+  if (model::compliant_model_from_environment()) {
+    const uint32_t n = inst.asset->rest.vertices_per_strand;
     return {sim::frame_lanes_pass_use(
-        terms, !model::conservative_model_from_environment() &&
-                   sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
-                   sim::lanes_fit_subgroup(inst.asset->rest.vertices_per_strand, ctx.subgroup_size_min,
-                                           ctx.subgroup_shuffle_compute))};
+        terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
+                   sim::lanes_fit_subgroup(n, ctx.subgroup_size_min, ctx.subgroup_shuffle_compute) &&
+                   (!model::conservative_model_from_environment() ||
+                    sim::conservative_fits_subgroup(
+                        n, ctx.subgroup_size,
+                        std::min(ctx.device_properties.limits.maxComputeWorkGroupInvocations,
+                                 ctx.device_properties.limits.maxComputeWorkGroupSize[0]),
+                        ctx.device_properties.limits.maxComputeSharedMemorySize)))};
+  }
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
   // The run kernel (the default up to its measured crossover; strands pinned at their tip take the one-thread
