@@ -42,7 +42,8 @@ const uint kSlots = WORKGROUP_SIZE / LANES;          // strands per workgroup
 const uint kBlockRows = 1u + kConservativeOn * (kSlots * (N - 2u) - 1u);
 shared mat3 s_blk[kBlockRows * 3u];
 shared vec3 s_vec[kBlockRows];
-shared uint s_iters;  // the most local-shape iterations of the workgroup's strands
+shared uint s_iters;
+uint tvk_iterations = 0u;  // the most local-shape iterations of the workgroup's strands (conservative shape only)
 uint tvk_slot_strand = 0u;
 // False for the lanes of a strand past the last guide (the subgroup variant's last workgroup): where the conservative
 // shape's barriers need every invocation of the workgroup, they run the last guide's steps and write nothing.
@@ -237,6 +238,13 @@ void main() {
   }
   LaneRest lr = lane_rest(b, v);
   GroupParams gp = guide_params(g);
+  if (kConservativeOn != 0u) {
+    if (gl_LocalInvocationIndex == 0u) s_iters = 0u;
+    barrier();
+    atomicMax(s_iters, gp.local_iterations);
+    barrier();
+    tvk_iterations = s_iters;
+  }
   for (uint s = 0u; s < pc.step_count; ++s) {
     tvk_step = pc.step_index + s;
     tvk_skin_base = pc.skin_base + s * pc.skin_stride;

@@ -184,39 +184,32 @@ mat3 inverse_sym(mat3 a) {
   return mat3(c00, c01, c02, c01, c11, c12, c02, c12, c22) * id;
 }
 
-// One invocation per strand: the block LDL^T factorisation of the system in s_blk from row base (block row c holds A(c, c), A(c, c - 1),
-// A(c, c - 2); they become D(c)^-1, L(c, c - 1), L(c, c - 2)), then s_vec = A^-1 s_vec; factor false reuses the
-// factorisation. The recurrences run in registers over a window of two block rows, so a row costs a few 3x3 products
-// and one 3x3 inverse and the loads of the next row do not wait on them (a scalar banded Cholesky read from shared
-// memory, its first form, spent most of its time waiting on those loads). The invocations 0 .. kSlots - 1 of the
-// workgroup solve its strands' systems, one each, while the others wait at the barrier after it: with several strands
-// a workgroup (the subgroup variant) the solves run side by side in one subgroup.
+// One invocation per strand: the block LDL^T factorisation of the system in s_blk from row base (block row c holds
+// A(c, c), A(c, c - 1), A(c, c - 2); they become D(c)^-1, L(c, c - 1), L(c, c - 2)) and the solve, s_vec = A^-1 s_vec.
+// The recurrences run in registers over a window of two block rows, so a row costs a few 3x3 products and one 3x3
+// inverse and the loads of the next row do not wait on them (a scalar banded Cholesky read from shared memory, its
+// first form, spent most of its time waiting on those loads). The invocations 0 .. kSlots - 1 of the workgroup solve
+// its strands' systems, one each, while the others wait at the barrier after it: with several strands a workgroup
+// (the subgroup variant) the solves run side by side in one subgroup.
 // NVIDIA H100, 240 / 60 Hz: Ratboy 5,242 -> 571 / 1,328 -> 161 us, curly 1 M 70,590 -> 7,327 / 17,752 -> 1,919 us.
-void block_solve(uint base, uint m, bool factor) {
+void block_solve(uint base, uint m) {
   mat3 di1 = mat3(0.0), di2 = mat3(0.0);  // D^-1 of rows c - 1, c - 2
   mat3 l1p = mat3(0.0);                   // L(c - 1, c - 2)
   vec3 z1 = vec3(0.0), z2 = vec3(0.0);    // z = L^-1 b of rows c - 1, c - 2
   for (uint c = 0u; c < m; ++c) {
-    mat3 l1, l2;
-    if (factor) {
-      mat3 a0 = s_blk[3u * (base + c)], a1 = s_blk[3u * (base + c) + 1u], a2 = s_blk[3u * (base + c) + 2u];
-      mat3 w1 = a1 - a2 * transpose(l1p);  // L(c, c - 1) D(c - 1)
-      l2 = a2 * di2;
-      l1 = w1 * di1;
-      mat3 dd = a0 - l2 * transpose(a2) - l1 * transpose(w1);
-      mat3 di = inverse_sym(dd);
-      s_blk[3u * (base + c)] = di;
-      s_blk[3u * (base + c) + 1u] = l1;
-      s_blk[3u * (base + c) + 2u] = l2;
-      di2 = di1;
-      di1 = di;
-      l1p = l1;
-    } else {
-      l1 = s_blk[3u * (base + c) + 1u];
-      l2 = s_blk[3u * (base + c) + 2u];
-    }
+    mat3 a0 = s_blk[3u * (base + c)], a1 = s_blk[3u * (base + c) + 1u], a2 = s_blk[3u * (base + c) + 2u];
+    mat3 w1 = a1 - a2 * transpose(l1p);  // L(c, c - 1) D(c - 1)
+    mat3 l2 = a2 * di2;
+    mat3 l1 = w1 * di1;
+    mat3 di = inverse_sym(a0 - l2 * transpose(a2) - l1 * transpose(w1));
+    s_blk[3u * (base + c)] = di;
+    s_blk[3u * (base + c) + 1u] = l1;
+    s_blk[3u * (base + c) + 2u] = l2;
     vec3 z = s_vec[base + c] - l2 * z2 - l1 * z1;
     s_vec[base + c] = z;
+    di2 = di1;
+    di1 = di;
+    l1p = l1;
     z2 = z1;
     z1 = z;
   }
@@ -236,10 +229,11 @@ void block_solve(uint base, uint m, bool factor) {
 // model's constraints x_{v+1} - x_v - T_v with their full gradient, dT/de = ((T.u) I - u T^T) / |e| on the edge before
 // (where that edge is the frame edge), so that every constraint touches x_{v-1}, x_v, x_{v+1} and the system
 // (G W G^T + at / (1 + gamma), rows divided by 1 + gamma) is 3x3-block pentadiagonal. Each lane assembles its row's
-// three blocks left of the diagonal from its neighbours' and writes them to shared memory; lane 0 solves the block
-// system (LDL^T, block_solve) and once more for the residual the lanes form; the lanes then move their vertex by W G^T dlambda.
-// Its barriers need every invocation of the workgroup: the iterations run to the workgroup's most (a strand with fewer
-// leaves the extra ones unapplied), and the lanes past the last guide run as the last guide (main, tvk_active).
+// three blocks left of the diagonal from its neighbours' and writes them to shared memory; one invocation solves each
+// strand's system (LDL^T, block_solve); the lanes then move their vertex by W G^T dlambda.
+// Its barriers need every invocation of the workgroup: the iterations run to the workgroup's most (tvk_iterations,
+// main; a strand with fewer leaves the extra ones unapplied), and the lanes past the last guide run as the last guide
+// (main, tvk_active).
 void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp) {
   vec4 skin = skin_rotation(g);
   bool row = v >= 1u && v + 1u < N;
@@ -256,15 +250,9 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
   const mat3 I3 = mat3(1.0);
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);
-  if (gl_LocalInvocationIndex == 0u) s_iters = 0u;
-  barrier();
-  atomicMax(s_iters, gp.local_iterations);
-  barrier();
-  const uint iters = s_iters;
-  barrier();  // read before the next substep resets it
   const uint base = tvk_slot_strand * (N - 2u);
   const uint own = base + (v >= 1u ? v - 1u : 0u);  // this lane's row (row lanes only)
-  for (uint it = 0u; it < iters; ++it) {
+  for (uint it = 0u; it < tvk_iterations; ++it) {
     const bool apply = it < gp.local_iterations;
     // 1. Directions and targets, as local_shape_lanes; jf: the frame edge the target came from.
     ShapeTarget st = lanes_shape_target(v, lr, row, rest_dir);
@@ -308,24 +296,12 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
       s_vec[own] = rhs;
     }
     barrier();
-    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * (N - 2u), N - 2u, true);
+    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * (N - 2u), N - 2u);
     barrier();
-    // 4. One refinement: the residual from the lanes' blocks (the upper ones are the next rows' transposed), solved
-    // again with the same factorisation.
-    vec3 x = row ? s_vec[own] : vec3(0.0);
-    lanes_put(v, vec4(x, 0.0), vec4(transpose(D1) * x, 0.0), vec4(transpose(D2) * x, 0.0));
-    vec4 g_x1 = lanes_get0(lane_before(v)), g_x2 = lanes_get0(v >= 2u ? v - 2u : 0u);
-    vec4 g_up1 = lanes_get1(lane_after(v)), g_up2 = lanes_get2(v + 2u < LANES ? v + 2u : v);
-    vec3 x_1 = v >= 2u ? g_x1.xyz : vec3(0.0);
-    vec3 x_2 = v >= 3u ? g_x2.xyz : vec3(0.0);
-    vec3 up_1 = v + 2u < N ? g_up1.xyz : vec3(0.0);
-    vec3 up_2 = v + 3u < N ? g_up2.xyz : vec3(0.0);
-    vec3 res = rhs - (D0 * x + D1 * x_1 + D2 * x_2 + up_1 + up_2);
-    if (row) s_vec[own] = res;  // the row this lane read its x from
-    barrier();
-    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * (N - 2u), N - 2u, false);
-    barrier();
-    vec3 dl = row && apply ? x + s_vec[own] : vec3(0.0);
+    // 4. No refinement: block LDL^T of this symmetric positive definite system is backward stable, and a refinement
+    // step (the residual from the lanes' blocks, solved again) changed no step error (lavapipe: Ratboy 60 Hz 3.4e-5
+    // with it, 3.3e-5 without; 240 Hz 1.8e-6 / 1.2e-6; two refinements 4.1e-5).
+    vec3 dl = row && apply ? s_vec[own] : vec3(0.0);
     // s_vec[own] is read here before this lane writes it again; the solver's next writes follow two barriers.
     // 5. x += W G^T dlambda: rows v - 1 (I), v (-I - J_v), v + 1 (J_{v+1}).
     lanes_put(v, vec4(dl, 0.0), vec4(transpose(J) * dl, 0.0), vec4(0.0));
