@@ -298,6 +298,21 @@ void Device::create_device() {
   }
   if (!missing.empty())
     throw Error(std::string("device '") + name() + "' lacks what TressVK needs: " + missing);
+  // TRESSVK_PIPELINE_STATS=1: the plugin reports its simulation pipelines' compiler statistics (registers, spills)
+  // where the driver offers them.
+  const char* stats_env = std::getenv("TRESSVK_PIPELINE_STATS");
+  bool pipeline_stats = stats_env != nullptr && stats_env[0] != '\0' && stats_env[0] != '0' &&
+                        has_extension(device_ext, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+  if (pipeline_stats) {
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR have_stats{};
+    have_stats.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR;
+    VkPhysicalDeviceFeatures2 query{};
+    query.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    query.pNext = &have_stats;
+    vkGetPhysicalDeviceFeatures2(physical_device_, &query);
+    pipeline_stats = have_stats.pipelineExecutableInfo == VK_TRUE;
+  }
+  if (pipeline_stats) extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
 
   // Queue: the first family that does graphics and compute (graphics implies transfer).
   uint32_t n_fam = 0;
@@ -332,6 +347,10 @@ void Device::create_device() {
   en12.hostQueryReset = have12.hostQueryReset;
   en12.separateDepthStencilLayouts = VK_TRUE;
   en12.pNext = &en13;
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR en_stats{};
+  en_stats.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR;
+  en_stats.pipelineExecutableInfo = VK_TRUE;
+  if (pipeline_stats) en13.pNext = &en_stats;
   VkPhysicalDeviceFeatures2 en{};
   en.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
   en.pNext = &en12;

@@ -1,9 +1,24 @@
 #include <tressvk/host/glue.hpp>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace tressvk::host {
+
+namespace {
+// The tools keep their output for results: the plugin's messages go to stderr only when TRESSVK_PIPELINE_STATS asks
+// for its pipelines' statistics (which it sends as info messages).
+void on_tool_message(TvkMessageSeverity severity, const char* message, void* /*user_data*/) {
+  const char* level = severity == TVK_MESSAGE_ERROR ? "error" : severity == TVK_MESSAGE_WARNING ? "warning" : "info";
+  std::fprintf(stderr, "tressvk %s: %s\n", level, message);
+}
+bool tool_messages_requested() {
+  const char* v = std::getenv("TRESSVK_PIPELINE_STATS");
+  return v != nullptr && v[0] != '\0' && v[0] != '0';
+}
+}  // namespace
 
 engine::DeviceOptions with_plugin_requirements(engine::DeviceOptions options) {
   TvkDeviceRequirements req{};
@@ -44,6 +59,7 @@ TvkContext create_context(const engine::Device& device, uint32_t frames_in_fligh
   TvkContextCreateInfo info = context_info(device);
   info.frames_in_flight = frames_in_flight;
   info.enable_timestamps = timestamps ? VK_TRUE : VK_FALSE;
+  if (tool_messages_requested()) info.message_callback = on_tool_message;
   TvkContext context = nullptr;
   check_tvk(tressvk_create_context(&info, &context), nullptr, "tressvk_create_context");
   return context;

@@ -4,8 +4,11 @@
 #include "sim/fused.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <string>
+#include <vector>
 
 using tressvk::Context;
 using tressvk::sim::PassId;
@@ -67,6 +70,47 @@ void destroy_sim_objects(Context& ctx) {
 
 namespace {
 
+bool pipeline_stats_requested() {
+  static const bool on = [] {
+    const char* v = std::getenv("TRESSVK_PIPELINE_STATS");
+    return v != nullptr && v[0] != '\0' && v[0] != '0';
+  }();
+  return on;
+}
+
+void report_pipeline_stats(Context& ctx, VkPipeline pipeline, const char* name, uint32_t workgroup) {
+  VkPipelineInfoKHR info{};
+  info.sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR;
+  info.pipeline = pipeline;
+  uint32_t executables = 0;
+  if (ctx.vk.vkGetPipelineExecutablePropertiesKHR(ctx.info.device, &info, &executables, nullptr) != VK_SUCCESS) return;
+  for (uint32_t e = 0; e < executables; ++e) {
+    VkPipelineExecutableInfoKHR ei{};
+    ei.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR;
+    ei.pipeline = pipeline;
+    ei.executableIndex = e;
+    uint32_t count = 0;
+    if (ctx.vk.vkGetPipelineExecutableStatisticsKHR(ctx.info.device, &ei, &count, nullptr) != VK_SUCCESS) continue;
+    std::vector<VkPipelineExecutableStatisticKHR> st(count);
+    for (VkPipelineExecutableStatisticKHR& x : st) x.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR;
+    if (ctx.vk.vkGetPipelineExecutableStatisticsKHR(ctx.info.device, &ei, &count, st.data()) != VK_SUCCESS) continue;
+    std::string line;
+    for (const VkPipelineExecutableStatisticKHR& x : st) {
+      line += line.empty() ? "" : ", ";
+      line += x.name;
+      line += ' ';
+      switch (x.format) {
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: line += x.value.b32 ? "yes" : "no"; break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: line += std::to_string(x.value.i64); break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: line += std::to_string(x.value.u64); break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: line += std::to_string(x.value.f64); break;
+        default: line += '?';
+      }
+    }
+    ctx.message(TVK_MESSAGE_INFO, "pipeline %s (workgroup %u): %s", name, workgroup, line.c_str());
+  }
+}
+
 TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k, VkPipeline& out) {
   const uint64_t key = uint64_t(use.info->id) | uint64_t(n) << 8 | uint64_t(k) << 16 | uint64_t(use.features) << 32 |
                        uint64_t(use.capsule_count) << 48;
@@ -100,11 +144,18 @@ TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k,
   cpi.stage.pName = "main";
   cpi.stage.pSpecializationInfo = &spec;
   cpi.layout = ctx.sim_pipeline_layout;
+  // TRESSVK_PIPELINE_STATS=1 with VK_KHR_pipeline_executable_properties enabled by the host (tressvk-bench and the
+  // demo enable it under the same variable): each simulation pipeline's compiler statistics (registers, spills, ...)
+  // as info messages. A diagnostic: occupancy, set by registers and shared memory, decides these kernels' speed.
+  const bool stats = pipeline_stats_requested() && ctx.vk.vkGetPipelineExecutableStatisticsKHR != nullptr &&
+                     ctx.vk.vkGetPipelineExecutablePropertiesKHR != nullptr;
+  if (stats) cpi.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkPipeline pipeline = VK_NULL_HANDLE;
   const VkResult vr = ctx.vk.vkCreateComputePipelines(ctx.info.device, ctx.info.pipeline_cache, 1, &cpi,
                                                       ctx.info.allocator, &pipeline);
   ctx.vk.vkDestroyShaderModule(ctx.info.device, module, ctx.info.allocator);
   if (TvkResult r = ctx.check(vr, "vkCreateComputePipelines"); r != TVK_SUCCESS) return r;
+  if (stats) report_pipeline_stats(ctx, pipeline, use.name.c_str(), wg);
   ctx.pipelines.push_back({key, pipeline});
   out = pipeline;
   return TVK_SUCCESS;
