@@ -40,8 +40,8 @@ const uint kLanesC = kLanesB | (kLanesB >> 4u);
 const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
 const uint kSlots = WORKGROUP_SIZE / LANES;          // strands per workgroup
 const uint kBlockRows = 1u + kConservativeOn * (kSlots * (N - 2u) - 1u);
-shared mat3 s_blk[kBlockRows * 3u];
-shared vec3 s_vec[kBlockRows];
+shared float s_blk[kBlockRows * 27u];  // floats, not mat3: a shared mat3 takes three vec4 columns on NVIDIA
+shared float s_vec[kBlockRows * 3u];
 shared uint s_iters;
 uint tvk_iterations = 0u;  // the most local-shape iterations of the workgroup's strands (conservative shape only)
 uint tvk_slot_strand = 0u;

@@ -192,21 +192,41 @@ mat3 inverse_sym(mat3 a) {
 // its strands' systems, one each, while the others wait at the barrier after it: with several strands a workgroup
 // (the subgroup variant) the solves run side by side in one subgroup.
 // NVIDIA H100, 240 / 60 Hz: Ratboy 5,242 -> 571 / 1,328 -> 161 us, curly 1 M 70,590 -> 7,327 / 17,752 -> 1,919 us.
+// Block k (0: the diagonal block, then D^-1; 1: A(c, c - 1), then L(c, c - 1); 2: A(c, c - 2), then L(c, c - 2)) of
+// block row r, and the row's vector.
+mat3 blk_get(uint r, uint k) {
+  uint o = 27u * r + 9u * k;
+  return mat3(s_blk[o], s_blk[o + 1u], s_blk[o + 2u], s_blk[o + 3u], s_blk[o + 4u], s_blk[o + 5u], s_blk[o + 6u],
+              s_blk[o + 7u], s_blk[o + 8u]);
+}
+void blk_set(uint r, uint k, mat3 a) {
+  uint o = 27u * r + 9u * k;
+  for (uint c = 0u; c < 3u; ++c)
+    for (uint i = 0u; i < 3u; ++i) s_blk[o + 3u * c + i] = a[c][i];
+}
+vec3 vec_get(uint r) { return vec3(s_vec[3u * r], s_vec[3u * r + 1u], s_vec[3u * r + 2u]); }
+void vec_set(uint r, vec3 x) {
+  s_vec[3u * r] = x.x;
+  s_vec[3u * r + 1u] = x.y;
+  s_vec[3u * r + 2u] = x.z;
+}
+
 void block_solve(uint base, uint m) {
   mat3 di1 = mat3(0.0), di2 = mat3(0.0);  // D^-1 of rows c - 1, c - 2
   mat3 l1p = mat3(0.0);                   // L(c - 1, c - 2)
   vec3 z1 = vec3(0.0), z2 = vec3(0.0);    // z = L^-1 b of rows c - 1, c - 2
   for (uint c = 0u; c < m; ++c) {
-    mat3 a0 = s_blk[3u * (base + c)], a1 = s_blk[3u * (base + c) + 1u], a2 = s_blk[3u * (base + c) + 2u];
+    uint r = base + c;
+    mat3 a1 = blk_get(r, 1u), a2 = blk_get(r, 2u);
     mat3 w1 = a1 - a2 * transpose(l1p);  // L(c, c - 1) D(c - 1)
     mat3 l2 = a2 * di2;
     mat3 l1 = w1 * di1;
-    mat3 di = inverse_sym(a0 - l2 * transpose(a2) - l1 * transpose(w1));
-    s_blk[3u * (base + c)] = di;
-    s_blk[3u * (base + c) + 1u] = l1;
-    s_blk[3u * (base + c) + 2u] = l2;
-    vec3 z = s_vec[base + c] - l2 * z2 - l1 * z1;
-    s_vec[base + c] = z;
+    mat3 di = inverse_sym(blk_get(r, 0u) - l2 * transpose(a2) - l1 * transpose(w1));
+    blk_set(r, 0u, di);
+    blk_set(r, 1u, l1);
+    blk_set(r, 2u, l2);
+    vec3 z = vec_get(r) - l2 * z2 - l1 * z1;
+    vec_set(r, z);
     di2 = di1;
     di1 = di;
     l1p = l1;
@@ -216,10 +236,10 @@ void block_solve(uint base, uint m) {
   vec3 x1 = vec3(0.0), x2 = vec3(0.0);  // x of rows c + 1, c + 2
   for (uint c = m; c-- > 0u;) {
     // (indices clamped into the strand's rows: a select may read both sides)
-    mat3 u1 = c + 1u < m ? s_blk[3u * (base + min(c + 1u, m - 1u)) + 1u] : mat3(0.0);
-    mat3 u2 = c + 2u < m ? s_blk[3u * (base + min(c + 2u, m - 1u)) + 2u] : mat3(0.0);
-    vec3 x = s_blk[3u * (base + c)] * s_vec[base + c] - transpose(u1) * x1 - transpose(u2) * x2;
-    s_vec[base + c] = x;
+    mat3 u1 = c + 1u < m ? blk_get(base + min(c + 1u, m - 1u), 1u) : mat3(0.0);
+    mat3 u2 = c + 2u < m ? blk_get(base + min(c + 2u, m - 1u), 2u) : mat3(0.0);
+    vec3 x = blk_get(base + c, 0u) * vec_get(base + c) - transpose(u1) * x1 - transpose(u2) * x2;
+    vec_set(base + c, x);
     x2 = x1;
     x1 = x;
   }
@@ -290,10 +310,10 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
       if (live_2) D2 = w_prev * J;
     }
     if (row) {
-      s_blk[3u * own] = D0;
-      s_blk[3u * own + 1u] = D1;
-      s_blk[3u * own + 2u] = D2;
-      s_vec[own] = rhs;
+      blk_set(own, 0u, D0);
+      blk_set(own, 1u, D1);
+      blk_set(own, 2u, D2);
+      vec_set(own, rhs);
     }
     barrier();
     if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * (N - 2u), N - 2u);
@@ -301,8 +321,8 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
     // 4. No refinement: block LDL^T of this symmetric positive definite system is backward stable, and a refinement
     // step (the residual from the lanes' blocks, solved again) changed no step error (lavapipe: Ratboy 60 Hz 3.4e-5
     // with it, 3.3e-5 without; 240 Hz 1.8e-6 / 1.2e-6; two refinements 4.1e-5).
-    vec3 dl = row && apply ? s_vec[own] : vec3(0.0);
-    // s_vec[own] is read here before this lane writes it again; the solver's next writes follow two barriers.
+    vec3 dl = row && apply ? vec_get(own) : vec3(0.0);
+    // Row own is read here before this lane writes it again; the solver's next writes follow two barriers.
     // 5. x += W G^T dlambda: rows v - 1 (I), v (-I - J_v), v + 1 (J_{v+1}).
     lanes_put(v, vec4(dl, 0.0), vec4(transpose(J) * dl, 0.0), vec4(0.0));
     vec3 dl_before = lanes_get0(lane_before(v)).xyz;

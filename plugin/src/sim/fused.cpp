@@ -50,12 +50,16 @@ constexpr uint64_t kRuns4MaxGuideVertices = 160u * 1024u;
 constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
-// With the conservative local shape: 256 / LANES strands a workgroup, whose systems one subgroup solves side by side
-// (lanes_compliant.glsl, block_solve). Its shared memory: per strand N - 2 block rows of three 3x3 blocks and a 3-vector.
-// NVIDIA H100, 240 Hz, workgroups of 256 / 128 / 64: Ratboy 387.6 / 383.9 / 362.1 us, curly 1 M 3,953 / 4,198 / 4,397
-// (170 registers: one workgroup of 256 an SM, three of 128; fewer solving lanes a subgroup cost more at 1 M).
-constexpr uint32_t kConservativeSubgroupWorkgroup = 256;
-constexpr uint32_t kConservativeRowBytes = 3 * 36 + 12;
+// With the conservative local shape: as many strands a workgroup as its shared memory holds, up to
+// kConservativeSubgroupWorkgroup invocations; the workgroup's first invocations solve their systems side by side
+// (lanes_compliant.glsl, block_solve). Its shared memory: per strand N - 2 block rows of three 3x3 blocks and a
+// 3-vector, in floats (a shared mat3 takes three vec4 columns on NVIDIA). NVIDIA H100, 240 Hz, strands of 32
+// vertices: 12 a workgroup of 384 (floats; 152 registers, 43 KB) Ratboy 301.8 us, curly 1 M 2,989; with mat3
+// storage 8 a workgroup of 256 (170 registers, 38 KB) 387.4 / 3,954, 4 of 128 383.9 / 4,198, 2 of 64 362.1 / 4,397:
+// the solves are serial, so the more of them side by side in a subgroup, the better at 1 M.
+constexpr uint32_t kConservativeSubgroupWorkgroup = 384;
+constexpr uint32_t kConservativeRowBytes = 27 * 4 + 12;
+constexpr uint32_t kConservativeFixedBytes = 64;  // the workgroup's iteration count and what a driver adds
 
 uint32_t lanes_for(uint32_t vertices_per_strand, uint32_t at_least) {
   uint32_t lanes = at_least;
@@ -124,12 +128,16 @@ bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bo
   return strand_fits_subgroup(lanes_for(vertices_per_strand, 1), subgroup_size, shuffle_compute);
 }
 
-bool conservative_fits_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, uint32_t max_invocations,
-                                uint32_t max_shared_bytes) {
-  const uint32_t wg = std::max(subgroup_size, kConservativeSubgroupWorkgroup);
-  const uint64_t bytes =
-      uint64_t{wg / lanes_for(vertices_per_strand, 1)} * (vertices_per_strand - 2) * kConservativeRowBytes + 4;
-  return wg <= max_invocations && bytes <= max_shared_bytes;
+uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size, uint32_t max_invocations,
+                            uint32_t max_shared_bytes) {
+  const uint32_t lanes = lanes_for(vertices_per_strand, 1);
+  const uint32_t step = std::max(1u, subgroup_size / lanes);  // whole subgroups
+  const uint64_t strand_bytes = uint64_t{vertices_per_strand - 2} * kConservativeRowBytes;
+  const uint64_t by_shared = max_shared_bytes > kConservativeFixedBytes
+                                 ? (max_shared_bytes - kConservativeFixedBytes) / strand_bytes : 0;
+  const uint32_t by_size = std::min(kConservativeSubgroupWorkgroup, max_invocations) / lanes;
+  const uint32_t slots = static_cast<uint32_t>(std::min<uint64_t>(by_shared, by_size)) / step * step;
+  return slots;
 }
 
 PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
@@ -191,17 +199,18 @@ uint32_t strand_lanes(const PassInfo* info, uint32_t vertices_per_strand) {
 }
 }  // namespace
 
-uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size) {
+uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size,
+                               uint32_t conservative_slots) {
   if (info == &kFrameLanesSubgroup && model::conservative_model_from_environment())
-    return std::max(subgroup_size, kConservativeSubgroupWorkgroup);
+    return conservative_slots * lanes_for(vertices_per_strand, 1);
   if (is_subgroup_lanes(info)) return std::max(subgroup_size, kLanesSubgroupWorkgroup);
   return lanes_for(vertices_per_strand, 32);
 }
 
 uint32_t frame_lanes_groups(const PassInfo* info, uint32_t guide_count, uint32_t vertices_per_strand,
-                            uint32_t subgroup_size) {
+                            uint32_t subgroup_size, uint32_t conservative_slots) {
   if (!is_subgroup_lanes(info)) return guide_count;
-  const uint32_t per_group = frame_lanes_workgroup(info, vertices_per_strand, subgroup_size) /
+  const uint32_t per_group = frame_lanes_workgroup(info, vertices_per_strand, subgroup_size, conservative_slots) /
                              strand_lanes(info, vertices_per_strand);
   return (guide_count + per_group - 1) / per_group;
 }

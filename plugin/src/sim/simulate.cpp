@@ -70,6 +70,14 @@ void destroy_sim_objects(Context& ctx) {
 
 namespace {
 
+// The strands a workgroup of the conservative local shape's subgroup variant on this device (sim/fused.hpp).
+uint32_t conservative_slots(const Context& ctx, uint32_t vertices_per_strand) {
+  const VkPhysicalDeviceLimits& l = ctx.device_properties.limits;
+  return sim::conservative_slots(vertices_per_strand, ctx.subgroup_size,
+                                 std::min(l.maxComputeWorkGroupInvocations, l.maxComputeWorkGroupSize[0]),
+                                 l.maxComputeSharedMemorySize);
+}
+
 bool pipeline_stats_requested() {
   static const bool on = [] {
     const char* v = std::getenv("TRESSVK_PIPELINE_STATS");
@@ -128,7 +136,8 @@ TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k,
                               "vkCreateShaderModule");
       r != TVK_SUCCESS)
     return r;
-  const uint32_t wg = sim::is_frame_lanes(use.info) ? sim::frame_lanes_workgroup(use.info, n, ctx.subgroup_size)
+  const uint32_t wg = sim::is_frame_lanes(use.info) ? sim::frame_lanes_workgroup(use.info, n, ctx.subgroup_size,
+                                                                                 conservative_slots(ctx, n))
                                                      : ctx.workgroup_size;
   // Constant 5: the run kernel's RUN (other shaders have no constant 5, which Vulkan allows).
   const std::array<uint32_t, 6> values = {wg, n, k, use.features, use.capsule_count, sim::frame_run_length(use.info)};
@@ -210,19 +219,15 @@ struct InstanceWork {
 // simulation path (TRESSVK_SIM_PATH) the run kernel, the one-thread kernel (its shared-memory variant only where the
 // strand block fits) or one pass per dispatch.
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
-  // The conservative local shape keeps its systems in shared memory: the subgroup variant only where its workgroup
-  // of 256 invocations and their systems fit the device.
+  // The conservative local shape keeps its systems in shared memory: the subgroup variant only where a workgroup of
+  // at least one subgroup's strands and their systems fit the device (conservative_slots).
   if (model::compliant_model_from_environment()) {
     const uint32_t n = inst.asset->rest.vertices_per_strand;
     return {sim::frame_lanes_pass_use(
         terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
                    sim::lanes_fit_subgroup(n, ctx.subgroup_size_min, ctx.subgroup_shuffle_compute) &&
                    (!model::conservative_model_from_environment() ||
-                    sim::conservative_fits_subgroup(
-                        n, ctx.subgroup_size,
-                        std::min(ctx.device_properties.limits.maxComputeWorkGroupInvocations,
-                                 ctx.device_properties.limits.maxComputeWorkGroupSize[0]),
-                        ctx.device_properties.limits.maxComputeSharedMemorySize)))};
+                    conservative_slots(ctx, n) > 0))};
   }
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
@@ -418,7 +423,8 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
       ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
       const uint32_t groups = sim::is_frame_lanes(u->info)
                                   ? sim::frame_lanes_groups(u->info, rest.guide_count, rest.vertices_per_strand,
-                                                            ctx.subgroup_size)
+                                                            ctx.subgroup_size,
+                                                            conservative_slots(ctx, rest.vertices_per_strand))
                               : fused                       ? sim::frame_dispatch_groups(rest.guide_count)
                                     : sim::dispatch_groups(u->info->granularity, rest.guide_count,
                                                            rest.vertices_per_strand, rest.follow_per_guide,
