@@ -34,14 +34,13 @@ const uint kLanesC = kLanesB | (kLanesB >> 4u);
 #define LANES WORKGROUP_SIZE
 #endif
 
-// The conservative local shape's block-pentadiagonal systems (lanes_compliant.glsl), one per strand of the workgroup
-// (slot: the strand's place in it): N - 2 block rows of three 3x3 blocks (the diagonal and the two left of it, then
-// their factors) and a 3-vector (right-hand side, then solution); one row where the variant is not compiled.
+// The conservative local shape's systems (lanes_compliant.glsl), one per strand of the workgroup (slot: the strand's
+// place in it): N nodes of kNodeFloats floats; one node where the variant is not compiled.
 const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
 const uint kSlots = WORKGROUP_SIZE / LANES;          // strands per workgroup
-const uint kBlockRows = 1u + kConservativeOn * (kSlots * (N - 2u) - 1u);
-shared float s_blk[kBlockRows * 27u];  // floats, not mat3: a shared mat3 takes three vec4 columns on NVIDIA
-shared float s_vec[kBlockRows * 3u];
+const uint kNodeFloats = 37u;
+const uint kNodes = 1u + kConservativeOn * (kSlots * N - 1u);
+shared float s_blk[kNodes * kNodeFloats];
 shared uint s_iters;
 uint tvk_iterations = 0u;  // the most local-shape iterations of the workgroup's strands (conservative shape only)
 uint tvk_slot_strand = 0u;

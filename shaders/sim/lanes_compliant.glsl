@@ -170,9 +170,9 @@ ShapeTarget lanes_shape_target(uint v, LaneRest lr, bool row, vec3 rest_dir) {
 const float kConservativeCalibration = 0.080;    // model::kConservativeCalibration
 const float kConservativeDampingScale = 0.3;     // model::kConservativeDampingScale
 
-// D(c) is inverted from its cofactors (one triangle: the block is symmetric). GLSL's inverse() here sent about one
-// strand in ten of Ratboy and the straight groom out of control on lavapipe and the H100 alike, from the first frame;
-// the cofactors of either triangle do not (not understood; the blocks were checked symmetric).
+// A symmetric 3x3 block inverted from its cofactors (one triangle). GLSL's inverse() of the normal equations' pivots
+// sent about one strand in ten of Ratboy and the straight groom out of control on lavapipe and the H100 alike, from
+// the first frame; the cofactors of either triangle did not (not understood; the blocks were checked symmetric).
 mat3 inverse_sym(mat3 a) {
   float c00 = a[1][1] * a[2][2] - a[1][2] * a[1][2];
   float c01 = a[1][2] * a[0][2] - a[0][1] * a[2][2];
@@ -184,73 +184,99 @@ mat3 inverse_sym(mat3 a) {
   return mat3(c00, c01, c02, c01, c11, c12, c02, c12, c22) * id;
 }
 
-// One invocation per strand: the block LDL^T factorisation of the system in s_blk from row base (block row c holds
-// A(c, c), A(c, c - 1), A(c, c - 2); they become D(c)^-1, L(c, c - 1), L(c, c - 2)) and the solve, s_vec = A^-1 s_vec.
-// The recurrences run in registers over a window of two block rows, so a row costs a few 3x3 products and one 3x3
-// inverse and the loads of the next row do not wait on them (a scalar banded Cholesky read from shared memory, its
-// first form, spent most of its time waiting on those loads). The invocations 0 .. kSlots - 1 of the workgroup solve
-// its strands' systems, one each, while the others wait at the barrier after it: with several strands a workgroup
-// (the subgroup variant) the solves run side by side in one subgroup.
-// NVIDIA H100, 240 / 60 Hz: Ratboy 5,242 -> 571 / 1,328 -> 161 us, curly 1 M 70,590 -> 7,327 / 17,752 -> 1,919 us.
-// Block k (0: the diagonal block, then D^-1; 1: A(c, c - 1), then L(c, c - 1); 2: A(c, c - 2), then L(c, c - 2)) of
-// block row r, and the row's vector.
-mat3 blk_get(uint r, uint k) {
-  uint o = 27u * r + 9u * k;
+// Node v of a strand's system in s_blk (kNodeFloats floats from kNodeFloats * node): what lane v writes (G_v's block on
+// x_{v-1} at 0, its coefficient on x_{v+1} at 9, M_v = 1 / w_v at 10, the compliance at 11, G_v's block on x_v at
+// 12, the right-hand side at 21), then what the solver writes over the last four once it has read them (D_v^-1 at 10:
+// its xx and mm blocks as symmetric 3x3s, its mx block; z_v at 31, then the solution u_v = (dx_v, -dlambda_v)).
+mat3 node_m3(uint o) {
   return mat3(s_blk[o], s_blk[o + 1u], s_blk[o + 2u], s_blk[o + 3u], s_blk[o + 4u], s_blk[o + 5u], s_blk[o + 6u],
               s_blk[o + 7u], s_blk[o + 8u]);
 }
-void blk_set(uint r, uint k, mat3 a) {
-  uint o = 27u * r + 9u * k;
+void node_set_m3(uint o, mat3 a) {
   for (uint c = 0u; c < 3u; ++c)
     for (uint i = 0u; i < 3u; ++i) s_blk[o + 3u * c + i] = a[c][i];
 }
-vec3 vec_get(uint r) { return vec3(s_vec[3u * r], s_vec[3u * r + 1u], s_vec[3u * r + 2u]); }
-void vec_set(uint r, vec3 x) {
-  s_vec[3u * r] = x.x;
-  s_vec[3u * r + 1u] = x.y;
-  s_vec[3u * r + 2u] = x.z;
+mat3 node_sym(uint o) {  // xx, yy, zz, xy, xz, yz
+  return mat3(s_blk[o], s_blk[o + 3u], s_blk[o + 4u], s_blk[o + 3u], s_blk[o + 1u], s_blk[o + 5u], s_blk[o + 4u],
+              s_blk[o + 5u], s_blk[o + 2u]);
+}
+void node_set_sym(uint o, mat3 a) {
+  s_blk[o] = a[0][0];
+  s_blk[o + 1u] = a[1][1];
+  s_blk[o + 2u] = a[2][2];
+  s_blk[o + 3u] = a[0][1];
+  s_blk[o + 4u] = a[0][2];
+  s_blk[o + 5u] = a[1][2];
+}
+vec3 node_v3(uint o) { return vec3(s_blk[o], s_blk[o + 1u], s_blk[o + 2u]); }
+void node_set_v3(uint o, vec3 x) {
+  s_blk[o] = x.x;
+  s_blk[o + 1u] = x.y;
+  s_blk[o + 2u] = x.z;
 }
 
-void block_solve(uint base, uint m) {
-  mat3 di1 = mat3(0.0), di2 = mat3(0.0);  // D^-1 of rows c - 1, c - 2
-  mat3 l1p = mat3(0.0);                   // L(c - 1, c - 2)
-  vec3 z1 = vec3(0.0), z2 = vec3(0.0);    // z = L^-1 b of rows c - 1, c - 2
-  for (uint c = 0u; c < m; ++c) {
-    uint r = base + c;
-    mat3 a1 = blk_get(r, 1u), a2 = blk_get(r, 2u);
-    mat3 w1 = a1 - a2 * transpose(l1p);  // L(c, c - 1) D(c - 1)
-    mat3 l2 = a2 * di2;
-    mat3 l1 = w1 * di1;
-    mat3 di = inverse_sym(blk_get(r, 0u) - l2 * transpose(a2) - l1 * transpose(w1));
-    blk_set(r, 0u, di);
-    blk_set(r, 1u, l1);
-    blk_set(r, 2u, l2);
-    vec3 z = vec_get(r) - l2 * z2 - l1 * z1;
-    vec_set(r, z);
-    di2 = di1;
-    di1 = di;
-    l1p = l1;
-    z2 = z1;
-    z1 = z;
+// One invocation per strand: the block LDL^T factorisation of the strand's quasi-definite system, nodes base ..
+// base + n - 1 (conservative_shape_lanes), and its solve. Node v's unknowns are (dx_v, mu_v = -dlambda_v); its
+// diagonal block is [[M_v I, Gs^T], [Gs, -a_v I]], the block to node v - 1 [[0, g_{v-1} I], [Gp_v, 0]]: the system is
+// block-tridiagonal in 6x6 blocks. D_v = [[A, B^T], [B, -C]] (A and C positive definite, every pivot of a
+// quasi-definite matrix exists), inverted through its Schur complement S = -C - B A^-1 B^T, in registers over a
+// window of one node; the loads of the next node do not wait on it.
+void block_solve(uint base, uint n) {
+  mat3 pxx = mat3(0.0), pmm = mat3(0.0), pmx = mat3(0.0);  // D_{v-1}^-1
+  vec3 zx = vec3(0.0), zm = vec3(0.0);                      // z_{v-1}
+  float g = 0.0;                                            // g_{v-1}
+  for (uint v = 0u; v < n; ++v) {
+    uint o = kNodeFloats * (base + v);
+    mat3 gp = node_m3(o), gs = node_m3(o + 12u);
+    float m = s_blk[o + 10u], al = s_blk[o + 11u];
+    vec3 b = node_v3(o + 21u);
+    // z_v = rhs_v - K(v, v-1) D_{v-1}^-1 z_{v-1}
+    vec3 yx = pxx * zx + transpose(pmx) * zm, ym = pmx * zx + pmm * zm;
+    zx = -g * ym;
+    zm = b - gp * yx;
+    // D_v = K(v, v) - K(v, v-1) D_{v-1}^-1 K(v, v-1)^T
+    mat3 a = m * mat3(1.0) - (g * g) * pmm;
+    mat3 bb = gs - g * gp * transpose(pmx);
+    mat3 c = al * mat3(1.0) + gp * pxx * transpose(gp);
+    mat3 ai = inverse_sym(a);
+    mat3 e = bb * ai;
+    mat3 si = inverse_sym(-c - e * transpose(bb));
+    pmx = -si * e;
+    pxx = ai - transpose(e) * pmx;
+    pmm = si;
+    node_set_sym(o + 10u, pxx);
+    node_set_sym(o + 16u, pmm);
+    node_set_m3(o + 22u, pmx);
+    node_set_v3(o + 31u, zx);
+    node_set_v3(o + 34u, zm);
+    g = s_blk[o + 9u];
   }
-  vec3 x1 = vec3(0.0), x2 = vec3(0.0);  // x of rows c + 1, c + 2
-  for (uint c = m; c-- > 0u;) {
-    // (indices clamped into the strand's rows: a select may read both sides)
-    mat3 u1 = c + 1u < m ? blk_get(base + min(c + 1u, m - 1u), 1u) : mat3(0.0);
-    mat3 u2 = c + 2u < m ? blk_get(base + min(c + 2u, m - 1u), 2u) : mat3(0.0);
-    vec3 x = blk_get(base + c, 0u) * vec_get(base + c) - transpose(u1) * x1 - transpose(u2) * x2;
-    vec_set(base + c, x);
-    x2 = x1;
-    x1 = x;
+  vec3 ux = vec3(0.0), um = vec3(0.0);  // u_{v+1}
+  for (uint v = n; v-- > 0u;) {
+    uint o = kNodeFloats * (base + v);
+    // (index clamped into the strand's nodes: a select may read both sides)
+    mat3 gpn = v + 1u < n ? node_m3(kNodeFloats * (base + min(v + 1u, n - 1u))) : mat3(0.0);
+    vec3 rx = node_v3(o + 31u) - transpose(gpn) * um;
+    vec3 rm = node_v3(o + 34u) - s_blk[o + 9u] * ux;
+    mat3 qmx = node_m3(o + 22u);
+    ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
+    um = qmx * rx + node_sym(o + 16u) * rm;
+    node_set_v3(o + 31u, ux);
+    node_set_v3(o + 34u, um);
   }
 }
 
 // The conservative local shape (the reference's local_shape_conservative, LengthModel::kConservative): the compliant
 // model's constraints x_{v+1} - x_v - T_v with their full gradient, dT/de = ((T.u) I - u T^T) / |e| on the edge before
-// (where that edge is the frame edge), so that every constraint touches x_{v-1}, x_v, x_{v+1} and the system
-// (G W G^T + at / (1 + gamma), rows divided by 1 + gamma) is 3x3-block pentadiagonal. Each lane assembles its row's
-// three blocks left of the diagonal from its neighbours' and writes them to shared memory; one invocation solves each
-// strand's system (LDL^T, block_solve); the lanes then move their vertex by W G^T dlambda.
+// (where that edge is the frame edge), so that every constraint touches x_{v-1}, x_v, x_{v+1}. The reference solves
+// (G W G^T + a) dlambda = b, a = at / (1 + gamma), rows divided by 1 + gamma (3x3-block pentadiagonal), in double.
+// In float that system cannot be formed: across a strand G is a second difference, G G^T a fourth, and its rounding
+// alone (solved exactly after) moved a strand of 128 vertices at 60 Hz by 5e-3 of its length in one step (numpy;
+// the GPU measured 2.3e-3 for long128, 3.8e-5 for Ratboy at 60 Hz, 4.3e-5 for the 128-vertex hard case). So the
+// lanes write the same solution's quasi-definite form, [[W^-1, G^T], [G, -a]] (dx, -dlambda) = (0, b), ordered by
+// vertex (dx_v with constraint v's multiplier): block-tridiagonal in 6x6 blocks, G never multiplied by itself. One
+// invocation solves each strand's system (block_solve); dx_v is the lane's move. lavapipe: long128 at 60 Hz
+// 2.3e-3 -> 2.9e-5, Ratboy at 60 Hz 3.3e-5 -> 3.4e-6; H100: hard cases 14 -> 15 of 15, at 2x the cost (docs/accuracy.md).
 // Its barriers need every invocation of the workgroup: the iterations run to the workgroup's most (tvk_iterations,
 // main; a strand with fewer leaves the extra ones unapplied), and the lanes past the last guide run as the last guide
 // (main, tvk_active).
@@ -270,8 +296,7 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
   const mat3 I3 = mat3(1.0);
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);
-  const uint base = tvk_slot_strand * (N - 2u);
-  const uint own = base + (v >= 1u ? v - 1u : 0u);  // this lane's row (row lanes only)
+  const uint node = kNodeFloats * (tvk_slot_strand * N + v);  // this lane's node (lanes v < N only)
   for (uint it = 0u; it < tvk_iterations; ++it) {
     const bool apply = it < gp.local_iterations;
     // 1. Directions and targets, as local_shape_lanes; jf: the frame edge the target came from.
@@ -294,43 +319,25 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
     vec3 delta_self = L_pos.xyz - L_prev.xyz;
     vec3 rate = after1.xyz - delta_self - J * (delta_self - before1.xyz);
     vec3 rhs = live ? -(np.xyz - L_pos.xyz - target + at * lam + gm * rate) / (1.0 + gm) : vec3(0.0);
-    // 3. This row's blocks: D0 (v, v), D1 (v, v - 1), D2 (v, v - 2); the rows before it from their lanes.
-    lanes_put(v, vec4(J[0], live ? 1.0 : 0.0), vec4(J[1], 0.0), vec4(J[2], 0.0));
-    vec4 jb0 = lanes_get0(lane_before(v));
-    mat3 Jp = mat3(jb0.xyz, lanes_get1(lane_before(v)).xyz, lanes_get2(lane_before(v)).xyz);
-    bool live_1 = v >= 2u && jb0.w > 0.5;
-    // (every lane gets, then selects: in the subgroup variant a shuffle needs its source lane active, and a get under
-    // a condition runs on some lanes only)
-    vec4 jb2 = lanes_get0(v >= 2u ? v - 2u : 0u);
-    bool live_2 = v >= 3u && jb2.w > 0.5;
-    mat3 D0 = I3, D1 = mat3(0.0), D2 = mat3(0.0);
-    if (live) {
-      D0 = w_next * I3 + w_self * (I3 + J) * transpose(I3 + J) + w_prev * J * transpose(J) + (at / (1.0 + gm)) * I3;
-      if (live_1) D1 = -w_self * (I3 + J) - w_prev * J * (I3 + transpose(Jp));
-      if (live_2) D2 = w_prev * J;
-    }
-    if (row) {
-      blk_set(own, 0u, D0);
-      blk_set(own, 1u, D1);
-      blk_set(own, 2u, D2);
-      vec_set(own, rhs);
+    // 3. This node: constraint v's gradient blocks on the free vertices (x_{v-1}: J, x_v: -I - J, x_{v+1}: I), the
+    // vertex's M = 1 / w, the constraint's compliance. A constraint that is not there (the root, the tip, no free
+    // vertex) is mu_v = 0: compliance 1, no coupling, no right-hand side.
+    if (v < N) {
+      node_set_m3(node, live && w_prev > 0.0 ? J : mat3(0.0));
+      s_blk[node + 9u] = live && w_next > 0.0 ? 1.0 : 0.0;
+      s_blk[node + 10u] = w_self > 0.0 ? 1.0 / w_self : 1.0;
+      s_blk[node + 11u] = live ? at / (1.0 + gm) : 1.0;
+      node_set_m3(node + 12u, live && w_self > 0.0 ? -I3 - J : mat3(0.0));
+      node_set_v3(node + 21u, rhs);
     }
     barrier();
-    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * (N - 2u), N - 2u);
+    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * N, N);
     barrier();
-    // 4. No refinement: block LDL^T of this symmetric positive definite system is backward stable, and a refinement
-    // step (the residual from the lanes' blocks, solved again) changed no step error (lavapipe: Ratboy 60 Hz 3.4e-5
-    // with it, 3.3e-5 without; 240 Hz 1.8e-6 / 1.2e-6; two refinements 4.1e-5).
-    vec3 dl = row && apply ? vec_get(own) : vec3(0.0);
-    // Row own is read here before this lane writes it again; the solver's next writes follow two barriers.
-    // 5. x += W G^T dlambda: rows v - 1 (I), v (-I - J_v), v + 1 (J_{v+1}).
-    lanes_put(v, vec4(dl, 0.0), vec4(transpose(J) * dl, 0.0), vec4(0.0));
-    vec3 dl_before = lanes_get0(lane_before(v)).xyz;
-    vec3 react_after = lanes_get1(lane_after(v)).xyz;
-    if (v >= 1u && v < N && w_self > 0.0 && apply) {
-      vec3 move = (v >= 2u ? dl_before : vec3(0.0)) - dl - transpose(J) * dl + (v + 2u < N ? react_after : vec3(0.0));
-      L_pos = vec4(L_pos.xyz + w_self * move, L_pos.w);
-    }
+    // 4. The move and the multiplier come out of the solve: dx_v = W G^T dlambda, mu_v = -dlambda_v.
+    vec3 dx = v < N ? node_v3(node + 31u) : vec3(0.0);
+    vec3 dl = row && apply ? -node_v3(node + 34u) : vec3(0.0);
+    // This node is read here before this lane writes it again; the solver's next writes follow two barriers.
+    if (v >= 1u && v < N && w_self > 0.0 && apply) L_pos = vec4(L_pos.xyz + dx, L_pos.w);
     if (row) lam += dl;
   }
 }

@@ -52,13 +52,13 @@ constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
 // With the conservative local shape: as many strands a workgroup as its shared memory holds, up to
 // kConservativeSubgroupWorkgroup invocations; the workgroup's first invocations solve their systems side by side
-// (lanes_compliant.glsl, block_solve). Its shared memory: per strand N - 2 block rows of three 3x3 blocks and a
-// 3-vector, in floats (a shared mat3 takes three vec4 columns on NVIDIA). NVIDIA H100, 240 Hz, strands of 32
-// vertices: 12 a workgroup of 384 (floats; 152 registers, 43 KB) Ratboy 301.8 us, curly 1 M 2,989; with mat3
-// storage 8 a workgroup of 256 (170 registers, 38 KB) 387.4 / 3,954, 4 of 128 383.9 / 4,198, 2 of 64 362.1 / 4,397:
-// the solves are serial, so the more of them side by side in a subgroup, the better at 1 M.
+// (lanes_compliant.glsl, block_solve). Its shared memory: per strand N nodes of 37 floats. NVIDIA H100, 240 Hz,
+// strands of 32 vertices, the normal equations' 3x3 blocks (30 rows of 27 floats and a 3-vector a strand): 12 a
+// workgroup of 384 (floats; 152 registers, 43 KB) Ratboy 301.8 us, curly 1 M 2,989; with mat3 storage 8 a workgroup
+// of 256 (170 registers, 38 KB) 387.4 / 3,954, 4 of 128 383.9 / 4,198, 2 of 64 362.1 / 4,397: the solves are
+// serial, so the more of them side by side in a subgroup, the better at 1 M.
 constexpr uint32_t kConservativeSubgroupWorkgroup = 384;
-constexpr uint32_t kConservativeRowBytes = 27 * 4 + 12;
+constexpr uint32_t kConservativeNodeBytes = 37 * 4;
 constexpr uint32_t kConservativeFixedBytes = 64;  // the workgroup's iteration count and what a driver adds
 
 uint32_t lanes_for(uint32_t vertices_per_strand, uint32_t at_least) {
@@ -132,7 +132,7 @@ uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size
                             uint32_t max_shared_bytes) {
   const uint32_t lanes = lanes_for(vertices_per_strand, 1);
   const uint32_t step = std::max(1u, subgroup_size / lanes);  // whole subgroups
-  const uint64_t strand_bytes = uint64_t{vertices_per_strand - 2} * kConservativeRowBytes;
+  const uint64_t strand_bytes = uint64_t{vertices_per_strand} * kConservativeNodeBytes;
   const uint64_t by_shared = max_shared_bytes > kConservativeFixedBytes
                                  ? (max_shared_bytes - kConservativeFixedBytes) / strand_bytes : 0;
   const uint32_t by_size = std::min(kConservativeSubgroupWorkgroup, max_invocations) / lanes;
