@@ -237,6 +237,11 @@ void Device::create_instance(const DeviceOptions& options) {
   }
 }
 
+bool pipeline_stats_requested() {
+  const char* v = std::getenv("TRESSVK_PIPELINE_STATS");
+  return v != nullptr && v[0] != '\0' && v[0] != '0';
+}
+
 void Device::pick_physical_device(const DeviceOptions& options) {
   const auto devices = physical_devices(instance_);
   const auto candidates = describe(devices);
@@ -300,9 +305,8 @@ void Device::create_device() {
     throw Error(std::string("device '") + name() + "' lacks what TressVK needs: " + missing);
   // TRESSVK_PIPELINE_STATS=1: the plugin reports its simulation pipelines' compiler statistics (registers, spills)
   // where the driver offers them.
-  const char* stats_env = std::getenv("TRESSVK_PIPELINE_STATS");
-  bool pipeline_stats = stats_env != nullptr && stats_env[0] != '\0' && stats_env[0] != '0' &&
-                        has_extension(device_ext, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+  bool pipeline_stats =
+      pipeline_stats_requested() && has_extension(device_ext, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
   if (pipeline_stats) {
     VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR have_stats{};
     have_stats.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR;

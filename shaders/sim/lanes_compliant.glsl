@@ -356,7 +356,9 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
   vec3 rest_dir = quat_rotate(skin, lr.edge);  // this lane's skinned rest edge
   for (uint it = 0u; it < gp.local_iterations; ++it) {
     // 1. Edge directions, then each constraint's target, as lanes_shape_target (written out here: calling it cost this
-    // kernel 17-30 % on an NVIDIA H100 at 240 Hz, Ratboy 107.3 -> 127.2 us, 1 M 1,104 -> 1,382, 4 M 4,119 -> 5,354).
+    // kernel 17-30 % on an NVIDIA H100 at 240 Hz, Ratboy 107.3 -> 127.2 us, 1 M 1,104 -> 1,382, 4 M 4,119 -> 5,354;
+    // the driver's register choice for this kernel was later seen to follow the module's other code, 80 or 96
+    // registers, docs/simulation.md, so that cost may be the same effect: not measured again).
     lanes_put(v, L_pos, L_prev, vec4(0.0));
     vec4 np = lanes_get0(lane_after(v));
     vec3 nq = lanes_get1(lane_after(v)).xyz;

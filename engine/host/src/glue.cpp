@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
 namespace tressvk::host {
@@ -13,10 +12,6 @@ namespace {
 void on_tool_message(TvkMessageSeverity severity, const char* message, void* /*user_data*/) {
   const char* level = severity == TVK_MESSAGE_ERROR ? "error" : severity == TVK_MESSAGE_WARNING ? "warning" : "info";
   std::fprintf(stderr, "tressvk %s: %s\n", level, message);
-}
-bool tool_messages_requested() {
-  const char* v = std::getenv("TRESSVK_PIPELINE_STATS");
-  return v != nullptr && v[0] != '\0' && v[0] != '0';
 }
 }  // namespace
 
@@ -59,7 +54,7 @@ TvkContext create_context(const engine::Device& device, uint32_t frames_in_fligh
   TvkContextCreateInfo info = context_info(device);
   info.frames_in_flight = frames_in_flight;
   info.enable_timestamps = timestamps ? VK_TRUE : VK_FALSE;
-  if (tool_messages_requested()) info.message_callback = on_tool_message;
+  if (engine::pipeline_stats_requested()) info.message_callback = on_tool_message;
   TvkContext context = nullptr;
   check_tvk(tressvk_create_context(&info, &context), nullptr, "tressvk_create_context");
   return context;
