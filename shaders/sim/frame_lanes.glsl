@@ -39,8 +39,10 @@ const uint kLanesC = kLanesB | (kLanesB >> 4u);
 const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
 const uint kSlots = WORKGROUP_SIZE / LANES;          // strands per workgroup
 const uint kNodeFloats = 37u;
-const uint kNodes = 1u + kConservativeOn * (kSlots * N - 1u);
-shared float s_blk[kNodes * kNodeFloats];
+// A strand's floats, odd so that the invocations solving the workgroup's systems side by side (one a strand, at the
+// same node at once) read different banks of the shared memory: at N * 37 floats every one of them read the same.
+const uint kSlotFloats = (N * kNodeFloats) | 1u;
+shared float s_blk[1u + kConservativeOn * (kSlots * kSlotFloats - 1u)];
 shared uint s_iters;
 uint tvk_iterations = 0u;  // the most local-shape iterations of the workgroup's strands (conservative shape only)
 uint tvk_slot_strand = 0u;

@@ -215,8 +215,8 @@ void node_set_v3(uint o, vec3 x) {
   s_blk[o + 2u] = x.z;
 }
 
-// One invocation per strand: the block LDL^T factorisation of the strand's quasi-definite system, nodes base ..
-// base + n - 1 (conservative_shape_lanes), and its solve. Node v's unknowns are (dx_v, mu_v = -dlambda_v); its
+// One invocation per strand: the block LDL^T factorisation of the strand's quasi-definite system, its n nodes from
+// float base (conservative_shape_lanes), and its solve. Node v's unknowns are (dx_v, mu_v = -dlambda_v); its
 // diagonal block is [[M_v I, Gs^T], [Gs, -a_v I]], the block to node v - 1 [[0, g_{v-1} I], [Gp_v, 0]]: the system is
 // block-tridiagonal in 6x6 blocks. D_v = [[A, B^T], [B, -C]] (A and C positive definite, every pivot of a
 // quasi-definite matrix exists), inverted through its Schur complement S = -C - B A^-1 B^T, in registers over a
@@ -226,7 +226,7 @@ void block_solve(uint base, uint n) {
   vec3 zx = vec3(0.0), zm = vec3(0.0);                      // z_{v-1}
   float g = 0.0;                                            // g_{v-1}
   for (uint v = 0u; v < n; ++v) {
-    uint o = kNodeFloats * (base + v);
+    uint o = base + kNodeFloats * v;
     mat3 gp = node_m3(o), gs = node_m3(o + 12u);
     float m = s_blk[o + 10u], al = s_blk[o + 11u];
     vec3 b = node_v3(o + 21u);
@@ -253,9 +253,9 @@ void block_solve(uint base, uint n) {
   }
   vec3 ux = vec3(0.0), um = vec3(0.0);  // u_{v+1}
   for (uint v = n; v-- > 0u;) {
-    uint o = kNodeFloats * (base + v);
+    uint o = base + kNodeFloats * v;
     // (index clamped into the strand's nodes: a select may read both sides)
-    mat3 gpn = v + 1u < n ? node_m3(kNodeFloats * (base + min(v + 1u, n - 1u))) : mat3(0.0);
+    mat3 gpn = v + 1u < n ? node_m3(base + kNodeFloats * min(v + 1u, n - 1u)) : mat3(0.0);
     vec3 rx = node_v3(o + 31u) - transpose(gpn) * um;
     vec3 rm = node_v3(o + 34u) - s_blk[o + 9u] * ux;
     mat3 qmx = node_m3(o + 22u);
@@ -296,7 +296,7 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
   const mat3 I3 = mat3(1.0);
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);
-  const uint node = kNodeFloats * (tvk_slot_strand * N + v);  // this lane's node (lanes v < N only)
+  const uint node = kSlotFloats * tvk_slot_strand + kNodeFloats * v;  // this lane's node (lanes v < N only)
   for (uint it = 0u; it < tvk_iterations; ++it) {
     const bool apply = it < gp.local_iterations;
     // 1. Directions and targets, as local_shape_lanes; jf: the frame edge the target came from.
@@ -331,7 +331,7 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
       node_set_v3(node + 21u, rhs);
     }
     barrier();
-    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * N, N);
+    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * kSlotFloats, N);
     barrier();
     // 4. The move and the multiplier come out of the solve: dx_v = W G^T dlambda, mu_v = -dlambda_v.
     vec3 dx = v < N ? node_v3(node + 31u) : vec3(0.0);

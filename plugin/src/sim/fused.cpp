@@ -59,6 +59,7 @@ constexpr uint32_t kLanesSubgroupWorkgroup = 64;
 // serial, so the more of them side by side in a subgroup, the better at 1 M.
 constexpr uint32_t kConservativeSubgroupWorkgroup = 384;
 constexpr uint32_t kConservativeNodeBytes = 37 * 4;
+constexpr uint32_t kConservativeStrandPadBytes = 4;  // frame_lanes.glsl, kSlotFloats: a strand's floats made odd
 constexpr uint32_t kConservativeFixedBytes = 64;  // the workgroup's iteration count and what a driver adds
 
 uint32_t lanes_for(uint32_t vertices_per_strand, uint32_t at_least) {
@@ -132,7 +133,7 @@ uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size
                             uint32_t max_shared_bytes) {
   const uint32_t lanes = lanes_for(vertices_per_strand, 1);
   const uint32_t step = std::max(1u, subgroup_size / lanes);  // whole subgroups
-  const uint64_t strand_bytes = uint64_t{vertices_per_strand} * kConservativeNodeBytes;
+  const uint64_t strand_bytes = uint64_t{vertices_per_strand} * kConservativeNodeBytes + kConservativeStrandPadBytes;
   const uint64_t by_shared = max_shared_bytes > kConservativeFixedBytes
                                  ? (max_shared_bytes - kConservativeFixedBytes) / strand_bytes : 0;
   const uint32_t by_size = std::min(kConservativeSubgroupWorkgroup, max_invocations) / lanes;
