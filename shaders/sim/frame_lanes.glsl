@@ -39,9 +39,15 @@ const uint kLanesC = kLanesB | (kLanesB >> 4u);
 const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
 const uint kSlots = WORKGROUP_SIZE / LANES;          // strands per workgroup
 const uint kNodeFloats = 37u;
+// After a strand's N nodes, what its system's two halves hand each other (lanes_compliant.glsl, conservative_solve).
+const uint kExchangeFloats = 33u;
 // A strand's floats, odd so that the invocations solving the workgroup's systems side by side (one a strand, at the
 // same node at once) read different banks of the shared memory: at N * 37 floats every one of them read the same.
-const uint kSlotFloats = (N * kNodeFloats) | 1u;
+const uint kSlotFloats = (N * kNodeFloats + kExchangeFloats) | 1u;
+// The invocations that solve: the upper halves of the systems (first nodes) the workgroup's first kSlots, the lower
+// halves kSlots from the next 32 (another NVIDIA subgroup, so that both halves run at once) where the workgroup has them.
+const uint kLowerSplit = ((kSlots + 31u) / 32u) * 32u;
+const uint kLowerFirst = kLowerSplit + kSlots <= WORKGROUP_SIZE ? kLowerSplit : kSlots;
 shared float s_blk[1u + kConservativeOn * (kSlots * kSlotFloats - 1u)];
 shared uint s_iters;
 uint tvk_iterations = 0u;  // the most local-shape iterations of the workgroup's strands (conservative shape only)

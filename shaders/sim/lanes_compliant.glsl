@@ -215,35 +215,52 @@ void node_set_v3(uint o, vec3 x) {
   s_blk[o + 2u] = x.z;
 }
 
-// One invocation per strand: the block LDL^T factorisation of the strand's quasi-definite system, its n nodes from
-// float base (conservative_shape_lanes), and its solve. Node v's unknowns are (dx_v, mu_v = -dlambda_v); its
-// diagonal block is [[M_v I, Gs^T], [Gs, -a_v I]], the block to node v - 1 [[0, g_{v-1} I], [Gp_v, 0]]: the system is
-// block-tridiagonal in 6x6 blocks. D_v = [[A, B^T], [B, -C]] (A and C positive definite, every pivot of a
-// quasi-definite matrix exists), inverted through its Schur complement S = -C - B A^-1 B^T, in registers over a
-// window of one node; the loads of the next node do not wait on it.
-void block_solve(uint base, uint n) {
+// A strand's system (conservative_shape_lanes) in s_blk: node v's unknowns are (dx_v, mu_v = -dlambda_v); its diagonal
+// block is [[M_v I, Gs^T], [Gs, -a_v I]], the block to node v - 1 [[0, g_{v-1} I], [Gp_v, 0]]: block-tridiagonal in
+// 6x6 blocks. It is factorised from both ends at once (a twisted block LDL^T): one invocation eliminates nodes 0 ..
+// k - 1 downwards, another nodes n - 1 .. k + 1 upwards, both hand node k what they make of it through the strand's
+// exchange floats, and after a barrier each solves node k and substitutes back towards its end. Every pivot is a
+// Schur complement of a quasi-definite matrix, [[A, B^T], [B, -C]] with A and C positive definite, and is inverted
+// through its own Schur complement S = -C - B A^-1 B^T in registers. The exchange (from base + n * kNodeFloats):
+// 0..26 the lower half's part of node k (its xx, mm blocks as symmetric 3x3s, its mx block, its right-hand side),
+// 27..32 the upper half's right-hand side of node k (its pivot's blocks go to node k's own floats 10..30).
+
+// [[a, bb^T], [bb, -c]]^-1 as its xx, mm (symmetric) and mx blocks.
+void pivot_inverse(mat3 a, mat3 bb, mat3 c, out mat3 pxx, out mat3 pmm, out mat3 pmx) {
+  mat3 ai = inverse_sym(a);
+  mat3 e = bb * ai;
+  pmm = inverse_sym(-c - e * transpose(bb));
+  pmx = -pmm * e;
+  pxx = ai - transpose(e) * pmx;
+}
+
+// Nodes 0 .. k - 1 eliminated downwards (D_v = K(v, v) - K(v, v-1) D_{v-1}^-1 K(v, v-1)^T, z_v = rhs_v - K(v, v-1)
+// D_{v-1}^-1 z_{v-1}; D_v^-1 written over node v's floats 10..30, z_v at 31), then node k's part of D_k and z_k.
+void solve_upper_half(uint base, uint n, uint k) {
   mat3 pxx = mat3(0.0), pmm = mat3(0.0), pmx = mat3(0.0);  // D_{v-1}^-1
   vec3 zx = vec3(0.0), zm = vec3(0.0);                      // z_{v-1}
   float g = 0.0;                                            // g_{v-1}
-  for (uint v = 0u; v < n; ++v) {
+  for (uint v = 0u; v <= k; ++v) {
     uint o = base + kNodeFloats * v;
     mat3 gp = node_m3(o), gs = node_m3(o + 12u);
     float m = s_blk[o + 10u], al = s_blk[o + 11u];
     vec3 b = node_v3(o + 21u);
-    // z_v = rhs_v - K(v, v-1) D_{v-1}^-1 z_{v-1}
     vec3 yx = pxx * zx + transpose(pmx) * zm, ym = pmx * zx + pmm * zm;
     zx = -g * ym;
     zm = b - gp * yx;
-    // D_v = K(v, v) - K(v, v-1) D_{v-1}^-1 K(v, v-1)^T
     mat3 a = m * mat3(1.0) - (g * g) * pmm;
     mat3 bb = gs - g * gp * transpose(pmx);
     mat3 c = al * mat3(1.0) + gp * pxx * transpose(gp);
-    mat3 ai = inverse_sym(a);
-    mat3 e = bb * ai;
-    mat3 si = inverse_sym(-c - e * transpose(bb));
-    pmx = -si * e;
-    pxx = ai - transpose(e) * pmx;
-    pmm = si;
+    if (v == k) {
+      node_set_sym(o + 10u, a);
+      node_set_sym(o + 16u, c);
+      node_set_m3(o + 22u, bb);
+      uint e = base + kNodeFloats * n;
+      node_set_v3(e + 27u, zx);
+      node_set_v3(e + 30u, zm);
+      break;
+    }
+    pivot_inverse(a, bb, c, pxx, pmm, pmx);
     node_set_sym(o + 10u, pxx);
     node_set_sym(o + 16u, pmm);
     node_set_m3(o + 22u, pmx);
@@ -251,18 +268,90 @@ void block_solve(uint base, uint n) {
     node_set_v3(o + 34u, zm);
     g = s_blk[o + 9u];
   }
-  vec3 ux = vec3(0.0), um = vec3(0.0);  // u_{v+1}
-  for (uint v = n; v-- > 0u;) {
+}
+
+// Nodes n - 1 .. k + 1 eliminated upwards (E_v = K(v, v) - K(v, v+1) E_{v+1}^-1 K(v, v+1)^T, w_v likewise; written
+// as the upper half writes), then their part of node k: K(k, k+1) E_{k+1}^-1 K(k, k+1)^T and K(k, k+1) E_{k+1}^-1 w_{k+1}.
+void solve_lower_half(uint base, uint n, uint k) {
+  mat3 qxx = mat3(0.0), qmm = mat3(0.0), qmx = mat3(0.0);  // E_{v+1}^-1
+  vec3 wx = vec3(0.0), wm = vec3(0.0);                      // w_{v+1}
+  for (uint v = n; v-- > k;) {
     uint o = base + kNodeFloats * v;
     // (index clamped into the strand's nodes: a select may read both sides)
-    mat3 gpn = v + 1u < n ? node_m3(base + kNodeFloats * min(v + 1u, n - 1u)) : mat3(0.0);
-    vec3 rx = node_v3(o + 31u) - transpose(gpn) * um;
-    vec3 rm = node_v3(o + 34u) - s_blk[o + 9u] * ux;
-    mat3 qmx = node_m3(o + 22u);
-    ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
-    um = qmx * rx + node_sym(o + 16u) * rm;
-    node_set_v3(o + 31u, ux);
-    node_set_v3(o + 34u, um);
+    mat3 gpn = v + 1u < n ? node_m3(base + kNodeFloats * min(v + 1u, n - 1u)) : mat3(0.0);  // Gp_{v+1}
+    float g = s_blk[o + 9u];
+    vec3 yx = qxx * wx + transpose(qmx) * wm, ym = qmx * wx + qmm * wm;
+    mat3 a = transpose(gpn) * qmm * gpn;
+    mat3 bb = g * transpose(qmx) * gpn;
+    mat3 c = (g * g) * qxx;
+    if (v == k) {
+      uint e = base + kNodeFloats * n;
+      node_set_sym(e, a);
+      node_set_sym(e + 6u, c);
+      node_set_m3(e + 12u, bb);
+      node_set_v3(e + 21u, transpose(gpn) * ym);
+      node_set_v3(e + 24u, g * yx);
+      break;
+    }
+    wx = -transpose(gpn) * ym;
+    wm = node_v3(o + 21u) - g * yx;
+    pivot_inverse(s_blk[o + 10u] * mat3(1.0) - a, node_m3(o + 12u) - bb, s_blk[o + 11u] * mat3(1.0) + c, qxx, qmm,
+                  qmx);
+    node_set_sym(o + 10u, qxx);
+    node_set_sym(o + 16u, qmm);
+    node_set_m3(o + 22u, qmx);
+    node_set_v3(o + 31u, wx);
+    node_set_v3(o + 34u, wm);
+  }
+}
+
+// The workgroup's systems, one a strand (strands of at most 2 k + 2 nodes); called by every invocation (its barrier).
+// The solution u_v = (dx_v, mu_v) ends in node v's floats 31..36.
+void conservative_solve(uint n) {
+  const uint li = gl_LocalInvocationIndex;
+  const bool upper = li < kSlots;
+  const bool lower = li >= kLowerFirst && li < kLowerFirst + kSlots;
+  const uint base = kSlotFloats * (upper ? li : li - kLowerFirst);
+  const uint k = n / 2u;
+  if (upper) solve_upper_half(base, n, k);
+  else if (lower) solve_lower_half(base, n, k);
+  barrier();
+  if (upper || lower) {
+    // Node k, by both halves (the same arithmetic): its pivot and right-hand side are the two halves' parts.
+    uint o = base + kNodeFloats * k, e = base + kNodeFloats * n;
+    mat3 pxx, pmm, pmx;
+    pivot_inverse(node_sym(o + 10u) - node_sym(e), node_m3(o + 22u) - node_m3(e + 12u),
+                  node_sym(o + 16u) + node_sym(e + 6u), pxx, pmm, pmx);
+    vec3 rx = node_v3(e + 27u) - node_v3(e + 21u), rm = node_v3(e + 30u) - node_v3(e + 24u);
+    vec3 ux = pxx * rx + transpose(pmx) * rm, um = pmx * rx + pmm * rm;  // u_k
+    if (upper) {
+      node_set_v3(o + 31u, ux);
+      node_set_v3(o + 34u, um);
+      // u_v = D_v^-1 (z_v - K(v+1, v)^T u_{v+1}), v = k - 1 .. 0
+      for (uint v = k; v-- > 0u;) {
+        o = base + kNodeFloats * v;
+        mat3 gpn = node_m3(o + kNodeFloats);
+        rx = node_v3(o + 31u) - transpose(gpn) * um;
+        rm = node_v3(o + 34u) - s_blk[o + 9u] * ux;
+        mat3 qmx = node_m3(o + 22u);
+        ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
+        um = qmx * rx + node_sym(o + 16u) * rm;
+        node_set_v3(o + 31u, ux);
+        node_set_v3(o + 34u, um);
+      }
+    } else {
+      // u_v = E_v^-1 (w_v - K(v, v-1) u_{v-1}), v = k + 1 .. n - 1
+      for (uint v = k + 1u; v < n; ++v) {
+        o = base + kNodeFloats * v;
+        rx = node_v3(o + 31u) - s_blk[o - kNodeFloats + 9u] * um;
+        rm = node_v3(o + 34u) - node_m3(o) * ux;
+        mat3 qmx = node_m3(o + 22u);
+        ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
+        um = qmx * rx + node_sym(o + 16u) * rm;
+        node_set_v3(o + 31u, ux);
+        node_set_v3(o + 34u, um);
+      }
+    }
   }
 }
 
@@ -274,9 +363,11 @@ void block_solve(uint base, uint n) {
 // alone (solved exactly after) moved a strand of 128 vertices at 60 Hz by 5e-3 of its length in one step (numpy;
 // the GPU measured 2.3e-3 for long128, 3.8e-5 for Ratboy at 60 Hz, 4.3e-5 for the 128-vertex hard case). So the
 // lanes write the same solution's quasi-definite form, [[W^-1, G^T], [G, -a]] (dx, -dlambda) = (0, b), ordered by
-// vertex (dx_v with constraint v's multiplier): block-tridiagonal in 6x6 blocks, G never multiplied by itself. One
-// invocation solves each strand's system (block_solve); dx_v is the lane's move. lavapipe: long128 at 60 Hz
-// 2.3e-3 -> 2.9e-5, Ratboy at 60 Hz 3.3e-5 -> 3.4e-6; H100: hard cases 14 -> 15 of 15, at 2x the cost (docs/accuracy.md).
+// vertex (dx_v with constraint v's multiplier): block-tridiagonal in 6x6 blocks, G never multiplied by itself. Two
+// invocations solve each strand's system from its two ends (conservative_solve); dx_v is the lane's move. lavapipe:
+// long128 at 60 Hz 2.3e-3 -> 2.9e-5, Ratboy at 60 Hz 3.3e-5 -> 3.4e-6; H100: hard cases 14 -> 15 of 15, at 2x the cost
+// of the normal equations with one invocation a strand; the two-ended solve and the odd strand stride then made it
+// faster than that (docs/accuracy.md).
 // Its barriers need every invocation of the workgroup: the iterations run to the workgroup's most (tvk_iterations,
 // main; a strand with fewer leaves the extra ones unapplied), and the lanes past the last guide run as the last guide
 // (main, tvk_active).
@@ -331,7 +422,7 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
       node_set_v3(node + 21u, rhs);
     }
     barrier();
-    if (gl_LocalInvocationIndex < kSlots) block_solve(gl_LocalInvocationIndex * kSlotFloats, N);
+    conservative_solve(N);
     barrier();
     // 4. The move and the multiplier come out of the solve: dx_v = W G^T dlambda, mu_v = -dlambda_v.
     vec3 dx = v < N ? node_v3(node + 31u) : vec3(0.0);

@@ -51,15 +51,17 @@ constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
 // With the conservative local shape: as many strands a workgroup as its shared memory holds, up to
-// kConservativeSubgroupWorkgroup invocations; the workgroup's first invocations solve their systems side by side
-// (lanes_compliant.glsl, block_solve). Its shared memory: per strand N nodes of 37 floats. NVIDIA H100, 240 Hz,
+// kConservativeSubgroupWorkgroup invocations; two of its subgroups solve their systems side by side, one from each
+// end (lanes_compliant.glsl, conservative_solve). Its shared memory: per strand N nodes of 37 floats and the halves'
+// exchange. NVIDIA H100, 240 Hz, before the quasi-definite form and the two-ended solve,
 // strands of 32 vertices, the normal equations' 3x3 blocks (30 rows of 27 floats and a 3-vector a strand): 12 a
 // workgroup of 384 (floats; 152 registers, 43 KB) Ratboy 301.8 us, curly 1 M 2,989; with mat3 storage 8 a workgroup
 // of 256 (170 registers, 38 KB) 387.4 / 3,954, 4 of 128 383.9 / 4,198, 2 of 64 362.1 / 4,397: the solves are
 // serial, so the more of them side by side in a subgroup, the better at 1 M.
 constexpr uint32_t kConservativeSubgroupWorkgroup = 384;
 constexpr uint32_t kConservativeNodeBytes = 37 * 4;
-constexpr uint32_t kConservativeStrandPadBytes = 4;  // frame_lanes.glsl, kSlotFloats: a strand's floats made odd
+// frame_lanes.glsl, kSlotFloats: a strand's exchange floats (33), and one more to make its floats odd.
+constexpr uint32_t kConservativeStrandPadBytes = 34 * 4;
 constexpr uint32_t kConservativeFixedBytes = 64;  // the workgroup's iteration count and what a driver adds
 
 uint32_t lanes_for(uint32_t vertices_per_strand, uint32_t at_least) {
