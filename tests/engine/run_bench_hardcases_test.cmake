@@ -29,3 +29,26 @@ foreach(i RANGE ${last})
     endif()
   endforeach()
 endforeach()
+
+# Another setting for every case (--step-rate, --local-iterations): the summary line names it and the JSON records
+# it; a setting out of range is refused before anything runs.
+set(json "${OUT_DIR}/hardcases-120-1.json")
+execute_process(COMMAND "${BENCH}" hardcases --validation --only "frame hitch" --converged-rate 960 --step-rate 120
+                        --local-iterations 1 --json "${json}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_clean_run("tressvk-bench hardcases --step-rate 120 --local-iterations 1")
+if(NOT out MATCHES "1 of 1 hard cases pass at 120 Hz with 1 local iteration on ")
+  message(FATAL_ERROR "hardcases --step-rate 120 --local-iterations 1: the summary does not name the setting")
+endif()
+file(READ "${json}" text)
+string(JSON rate GET "${text}" step_rate_hz)
+string(JSON iterations GET "${text}" local_iterations)
+if(NOT rate EQUAL 120 OR NOT iterations EQUAL 1)
+  message(FATAL_ERROR "hardcases JSON: step_rate_hz ${rate}, local_iterations ${iterations}; expected 120 and 1")
+endif()
+foreach(bad "--step-rate;10" "--step-rate;1000" "--local-iterations;0")
+  execute_process(COMMAND "${BENCH}" hardcases ${bad} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT err MATCHES "not in range")
+    message(FATAL_ERROR "hardcases ${bad}: exit ${rc}, expected a refusal naming the range\n${err}")
+  endif()
+endforeach()

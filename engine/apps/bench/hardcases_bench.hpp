@@ -14,6 +14,8 @@ struct HardCasesCommand {
   std::string json_path, device, only;
   double converged_rate = 3840;   // Hz, the converged reference of the report-only model error
   uint32_t model_error_guides = 4;  // guides compared for the model error
+  double step_rate = 0;             // Hz; 0: each case's own (the default 240 Hz)
+  uint32_t local_iterations = 0;    // 0: each case's own
   bool validation = false;
 };
 
