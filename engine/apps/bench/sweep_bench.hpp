@@ -29,6 +29,7 @@ struct SweepCommand {
   uint32_t frames = 120;        // scene frames whose trajectory is compared
   uint32_t timed_frames = 120, warmup = 30, frames_in_flight = 3;
   double warmup_ms = 1000;      // GPU work before the first timed configuration (its clock ramps up)
+  double warmup_ms_each = 250;  // and at least this much before each configuration (after the gap between two)
   double reference_rate = 3840;
   uint32_t reference_local_iterations = 8, reference_length_iterations = 4, reference_vertices = 128;
   uint32_t threads = 0;         // reference threads (0: one per scene, at most the hardware's)

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace tressvk::host {
 
 namespace {
 // The tools keep their output for results: the plugin's messages go to stderr only when TRESSVK_PIPELINE_STATS asks
-// for its pipelines' statistics (which it sends as info messages).
+// for its pipelines' statistics or TRESSVK_DEBUG_ALLOCATIONS for its buffers' places (which it sends as info messages).
 void on_tool_message(TvkMessageSeverity severity, const char* message, void* /*user_data*/) {
   const char* level = severity == TVK_MESSAGE_ERROR ? "error" : severity == TVK_MESSAGE_WARNING ? "warning" : "info";
   std::fprintf(stderr, "tressvk %s: %s\n", level, message);
@@ -54,7 +55,11 @@ TvkContext create_context(const engine::Device& device, uint32_t frames_in_fligh
   TvkContextCreateInfo info = context_info(device);
   info.frames_in_flight = frames_in_flight;
   info.enable_timestamps = timestamps ? VK_TRUE : VK_FALSE;
-  if (engine::pipeline_stats_requested()) info.message_callback = on_tool_message;
+  // The plugin's info messages (pipeline statistics, TRESSVK_DEBUG_ALLOCATIONS) only where asked for: the tools'
+  // output stays their tables.
+  const char* allocations = std::getenv("TRESSVK_DEBUG_ALLOCATIONS");
+  if (engine::pipeline_stats_requested() || (allocations && allocations[0] != '\0' && allocations[0] != '0'))
+    info.message_callback = on_tool_message;
   TvkContext context = nullptr;
   check_tvk(tressvk_create_context(&info, &context), nullptr, "tressvk_create_context");
   return context;

@@ -1,6 +1,21 @@
 #include "core/gpu.hpp"
 
+#include <cstdlib>
+
 namespace tressvk {
+namespace {
+
+// TRESSVK_DEBUG_ALLOCATIONS=1: every buffer's memory object and offset as an info message (read once per process), to
+// relate a kernel's speed to where its buffers landed.
+bool allocations_logged() {
+  static const bool on = [] {
+    const char* v = std::getenv("TRESSVK_DEBUG_ALLOCATIONS");
+    return v != nullptr && v[0] != '\0' && v[0] != '0';
+  }();
+  return on;
+}
+
+}  // namespace
 
 TvkResult create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, Memory memory, const char* name,
                         GpuBuffer& out) {
@@ -35,6 +50,10 @@ TvkResult create_buffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usag
   }
   out.size = size;
   out.mapped = info.pMappedData;
+  if (allocations_logged())
+    ctx.message(TVK_MESSAGE_INFO, "allocation: %s, %llu bytes, memory %p at offset %llu", name,
+                static_cast<unsigned long long>(bci.size), static_cast<void*>(info.deviceMemory),
+                static_cast<unsigned long long>(info.offset));
   return TVK_SUCCESS;
 }
 
