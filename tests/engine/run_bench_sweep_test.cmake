@@ -13,7 +13,7 @@ file(REMOVE_RECURSE "${OUT_DIR}")
 file(MAKE_DIRECTORY "${OUT_DIR}")
 set(json "${OUT_DIR}/sweep.json")
 set(csv "${OUT_DIR}/sweep.csv")
-execute_process(COMMAND "${BENCH}" sweep --builtin curly --guides 8 --error-guides 2 --frames 8 --timed-frames 3 --warmup-ms 0
+execute_process(COMMAND "${BENCH}" sweep --builtin curly --guides 8 --error-guides 2 --frames 8 --timed-frames 3 --warmup-ms 0 --warmup-ms-each 0
                         --warmup 1 --in-flight 2 --rates 120,240 --local-iterations 2 --length-iterations 1
                         --vertices 16,32 --scenes settle,run --reference-rate 960 --reference-vertices 32 --threads 1
                         --validation --json "${json}" --csv "${csv}"
