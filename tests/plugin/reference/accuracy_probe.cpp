@@ -309,7 +309,7 @@ void upright() {
 }
 
 // The compliant length solve's worst stretch per 6 frames (reference::stretch) on TVK_GROOM x TVK_GUIDES x TVK_N in
-// TVK_SCENE at TVK_RATE Hz (defaults: long128 8 x 128, run, 240 Hz: hard case 2); TVK_NEAR_DUP=1 instead puts sub-micrometre segments into
+// TVK_SCENE at TVK_RATE Hz with TVK_LIT local iterations (defaults: long128 8 x 128, run, 240 Hz, 2: hard case 2); TVK_NEAR_DUP=1 instead puts sub-micrometre segments into
 // the straight groom as hard case 8 does (reference::with_near_duplicate_vertices); TVK_RATBOY=…/Ratboy_mohawk.tfx the
 // Ratboy mohawk with its bones, baked at TVK_N vertices. TVK_EVERY prints every frame; TVK_DEBUG lists the segments
 // more than 5 % off their length in a frame whose worst is.
@@ -331,7 +331,9 @@ void stretch_probe() {
   }
   TvkSimSettings s = tvk_test::default_settings();
   if (const char* e = std::getenv("TVK_RATE")) s.time.step_rate = static_cast<float>(std::atof(e));
-  tressvk::reference::Simulator sim = tvk_test::make_sim(a, tvk_test::default_params(), s);
+  TvkSimParams p = tvk_test::default_params();
+  if (const char* e = std::getenv("TVK_LIT")) p.local_iterations = static_cast<uint32_t>(std::atoi(e));
+  tressvk::reference::Simulator sim = tvk_test::make_sim(a, p, s);
   sim.set_model(g_model);
   const auto geo = tressvk::reference::scene_geometry(sim.rest());
   std::printf("frame,max_stretch\n");
