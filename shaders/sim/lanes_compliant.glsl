@@ -16,6 +16,7 @@ const float kBendDampingGrowthCap = 4.0;  // the reference's compliant_bend_damp
 const uint kCompliantExtraNewton = 4u;
 const float kCompliantStretchTol = 1e-3;
 const float kCompliantReachFloorRel = 0.5;
+const float kConservativeFallbackStretch = 4e-3;  // the reference's (length_fallback_lanes)
 
 
 // Solves the tridiagonal system whose row r lane r holds (sub a, diagonal b, super c, right-hand side d; rows that are
@@ -577,6 +578,34 @@ void transverse_lanes(uint v, LaneRest lr, vec3 move, float lam) {
   if (vert && L_pos.w > 0.0) L_pos = vec4(L_pos.xyz + delta, L_pos.w);
 }
 
+// The conservative model's length fallback (the reference's, after its extra Newton steps): where a segment is still
+// off its length by more than kConservativeFallbackStretch, a follow-the-leader clean-up from the root, its move
+// weighted from 0 there to whole at twice that; strands with a free tip only. The walk hands each cleaned vertex to
+// the next lane, one round a vertex, on the strands that need it (the condition is the strand's, as the extra
+// steps' is).
+void length_fallback_lanes(uint v, LaneRest lr) {
+  lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
+  vec4 np = lanes_get0(lane_after(v));
+  float off = 0.0;
+  if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
+  if (v + 1u == N && !(L_pos.w > 0.0)) off = 3.0e38;  // a pinned tip: no fallback
+  float worst = lanes_max(v, off);
+  if (!(worst < 1.0e38)) return;
+  float weight = clamp((worst - kConservativeFallbackStretch) / kConservativeFallbackStretch, 0.0, 1.0);
+  if (!(weight > 0.0)) return;
+  vec3 mine = L_pos.xyz, cleaned = L_pos.xyz;
+  for (uint r = 1u; r < N; ++r) {
+    lanes_put(v, vec4(cleaned, 0.0), vec4(0.0), vec4(0.0));
+    vec3 parent = lanes_get0(lane_before(v)).xyz;
+    if (v == r && L_pos.w > 0.0) {
+      vec3 d = mine - parent;
+      float l = length(d);
+      if (l > 0.0) cleaned = parent + (lr.len_left / l) * d;
+    }
+  }
+  if (v < N) L_pos = vec4(mine + weight * (cleaned - mine), L_pos.w);
+}
+
 void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool write_tangents) {
   bool vert = v < N;
 
@@ -619,6 +648,7 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
     if (!(worst > kCompliantStretchTol)) break;
     newton_lanes(v, lr, reach_floor, min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0), move, lam);
   }
+  if (TVK_HAS(TVK_FEATURE_CONSERVATIVE)) length_fallback_lanes(v, lr);
 
   finish_lanes(g, b, v, gp, write_tangents);
 }

@@ -198,6 +198,9 @@ Quat Simulator::current_root_frame(const Substep& st, uint32_t g) const {
 namespace {
 // The compliant length solve's safeguard (see length_and_collision).
 constexpr uint32_t kCompliantExtraNewton = 4;
+// LengthModel::kConservative's length fallback: a follow-the-leader clean-up whose move is weighted from 0 where the
+// worst segment is off its length by kConservativeFallbackStretch to whole at twice that (length_and_collision).
+constexpr double kConservativeFallbackStretch = 4e-3;
 constexpr double kCompliantStretchTol = 1e-3;
 // The damped Newton step's reach is measured against segments of at least this fraction of the strand's mean segment
 // (see solve_lengths).
@@ -867,6 +870,36 @@ void Simulator::length_and_collision(const Substep& st) {
         }
         if (!(worst > kCompliantStretchTol)) break;
         solve_lengths(b, std::min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0));
+      }
+      // The conservative model's fallback (its recommended 1 local iteration at 120 Hz left hard case 2's strands
+      // stretched by 0.41: capsule pushes larger than the damped Newton steps restore, 16 of them 0.35): where a
+      // segment is still off by more than kConservativeFallbackStretch, a follow-the-leader clean-up from the root
+      // (each free vertex put back at its rest length from its cleaned parent, along its own direction), its move
+      // weighted from 0 there to whole at twice that, continuous in the state as the extra Newton steps are. Strands
+      // with a free tip only (from the root alone a pinned tip would keep the whole error next to it).
+      if (length_model_ == LengthModel::kConservative && movable(b + n - 1)) {
+        double worst = 0.0;
+        for (uint32_t v = 0; v + 1 < n; ++v) {
+          if (!movable(b + v) && !movable(b + v + 1)) continue;
+          const double rest = rest_.rest_length[b + v];
+          worst = std::max(worst, std::abs(length(pos_[b + v + 1] - pos_[b + v]) - rest) / rest);
+        }
+        const double weight =
+            std::clamp((worst - kConservativeFallbackStretch) / kConservativeFallbackStretch, 0.0, 1.0);
+        if (weight > 0.0) {
+          Vec3 parent = pos_[b];  // the cleaned position of the vertex before
+          for (uint32_t v = 1; v < n; ++v) {
+            const Vec3 mine = pos_[b + v];
+            Vec3 cleaned = mine;
+            if (movable(b + v)) {
+              const Vec3 d = mine - parent;
+              const double l = length(d);
+              if (l > 0.0) cleaned = parent + (rest_.rest_length[b + v - 1] / l) * d;
+            }
+            pos_[b + v] = mine + weight * (cleaned - mine);
+            parent = cleaned;
+          }
+        }
       }
     } else if (length_model_ == LengthModel::kNewmark) {
       // LengthModel::kNewmark (opt-in, not yet the default: see simulator.hpp). Every strand alike:
