@@ -5,7 +5,7 @@
 // Diagnostic only: usage conditioning_probe (FILE.tfx [FILE.tfxbone] | straight|curly|long128) [frames] [scenes...]
 // Environment: PROBE_PASSES=1 replays the worst frame pass by pass (PROBE_GUIDE=g: show guide g's segments);
 // PROBE_DETAIL=1 shows the worst strand; PROBE_NOCAPS=1 drops capsules; PROBE_VSP, PROBE_LOCAL, PROBE_GLOBAL,
-// PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED override parameters.
+// PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED, PROBE_LIT (local iterations) override parameters.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +37,7 @@ TvkSimParams probe_params() {
   if (const char* e = std::getenv("PROBE_GLOBAL")) p.global_stiffness = std::strtof(e, nullptr);
   if (const char* e = std::getenv("PROBE_VSP_THRESHOLD")) p.vsp_threshold = std::strtof(e, nullptr);
   if (const char* e = std::getenv("PROBE_MAX_SPEED")) p.max_speed = std::strtof(e, nullptr);
+  if (const char* e = std::getenv("PROBE_LIT")) p.local_iterations = static_cast<uint32_t>(std::atoi(e));
   return p;
 }
 }  // namespace
