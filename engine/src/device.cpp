@@ -237,10 +237,12 @@ void Device::create_instance(const DeviceOptions& options) {
   }
 }
 
-bool pipeline_stats_requested() {
-  const char* v = std::getenv("TRESSVK_PIPELINE_STATS");
+bool env_flag(const char* name) {
+  const char* v = std::getenv(name);
   return v != nullptr && v[0] != '\0' && v[0] != '0';
 }
+
+bool pipeline_stats_requested() { return env_flag("TRESSVK_PIPELINE_STATS"); }
 
 void Device::pick_physical_device(const DeviceOptions& options) {
   const auto devices = physical_devices(instance_);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
 namespace tressvk::host {
@@ -57,8 +56,7 @@ TvkContext create_context(const engine::Device& device, uint32_t frames_in_fligh
   info.enable_timestamps = timestamps ? VK_TRUE : VK_FALSE;
   // The plugin's info messages (pipeline statistics, TRESSVK_DEBUG_ALLOCATIONS) only where asked for: the tools'
   // output stays their tables.
-  const char* allocations = std::getenv("TRESSVK_DEBUG_ALLOCATIONS");
-  if (engine::pipeline_stats_requested() || (allocations && allocations[0] != '\0' && allocations[0] != '0'))
+  if (engine::pipeline_stats_requested() || engine::env_flag("TRESSVK_DEBUG_ALLOCATIONS"))
     info.message_callback = on_tool_message;
   TvkContext context = nullptr;
   check_tvk(tressvk_create_context(&info, &context), nullptr, "tressvk_create_context");

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <new>
 #include <string>
@@ -233,6 +234,11 @@ TvkResult init_context(Context& ctx) {
   ctx.message(TVK_MESSAGE_INFO, "TressVK %d.%d.%d context on '%s'", TVK_VERSION_MAJOR, TVK_VERSION_MINOR,
               TVK_VERSION_PATCH, ctx.device_properties.deviceName);
   return TVK_SUCCESS;
+}
+
+bool env_flag(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr && v[0] != '\0' && v[0] != '0';
 }
 
 }  // namespace tressvk

@@ -120,6 +120,9 @@ TvkResult guarded(Context& ctx, const char* call, Body&& body) noexcept {
   return r;
 }
 
+// A diagnostic switch from the environment (TRESSVK_PIPELINE_STATS, TRESSVK_DEBUG_ALLOCATIONS): set, and not "0".
+bool env_flag(const char* name);
+
 }  // namespace tressvk
 
 // The opaque handle type of the C interface is the context itself.

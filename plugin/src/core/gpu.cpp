@@ -1,17 +1,12 @@
 #include "core/gpu.hpp"
 
-#include <cstdlib>
-
 namespace tressvk {
 namespace {
 
 // TRESSVK_DEBUG_ALLOCATIONS=1: every buffer's memory object and offset as an info message (read once per process), to
 // relate a kernel's speed to where its buffers landed.
 bool allocations_logged() {
-  static const bool on = [] {
-    const char* v = std::getenv("TRESSVK_DEBUG_ALLOCATIONS");
-    return v != nullptr && v[0] != '\0' && v[0] != '0';
-  }();
+  static const bool on = env_flag("TRESSVK_DEBUG_ALLOCATIONS");
   return on;
 }
 

@@ -4,7 +4,6 @@
 #include "sim/fused.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -79,10 +78,7 @@ uint32_t conservative_slots(const Context& ctx, uint32_t vertices_per_strand) {
 }
 
 bool pipeline_stats_requested() {
-  static const bool on = [] {
-    const char* v = std::getenv("TRESSVK_PIPELINE_STATS");
-    return v != nullptr && v[0] != '\0' && v[0] != '0';
-  }();
+  static const bool on = env_flag("TRESSVK_PIPELINE_STATS");
   return on;
 }
 

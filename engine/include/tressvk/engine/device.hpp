@@ -56,6 +56,8 @@ struct DeviceInfo {
 std::vector<DeviceInfo> list_devices();
 std::string api_version_string(uint32_t version);
 
+// A diagnostic switch from the environment: set, and not "0".
+bool env_flag(const char* name);
 // TRESSVK_PIPELINE_STATS is set (and not "0"): the device enables VK_KHR_pipeline_executable_properties where
 // offered, and the tools print the plugin's messages, among them its pipelines' compiler statistics.
 bool pipeline_stats_requested();
