@@ -638,6 +638,7 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
   newton_lanes(v, lr, reach_floor, 1.0, move, lam);
   transverse_lanes(v, lr, move, lam);
   for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(v, lr, reach_floor, 1.0, move, lam);
+  bool settled = false;  // the worst segment within kCompliantStretchTol: no extra step, no fallback
   for (uint extra = 0u; extra < kCompliantExtraNewton; ++extra) {
     lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
     vec4 np = lanes_get0(lane_after(v));
@@ -645,10 +646,13 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
     if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
     // Weighted by how far over the tolerance the worst segment is, as the reference (continuous in the state).
     float worst = lanes_max(v, off);
-    if (!(worst > kCompliantStretchTol)) break;
+    settled = !(worst > kCompliantStretchTol);
+    if (settled) break;
     newton_lanes(v, lr, reach_floor, min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0), move, lam);
   }
-  if (TVK_HAS(TVK_FEATURE_CONSERVATIVE)) length_fallback_lanes(v, lr);
+  // (A strand the extra steps left within their tolerance is below the fallback's threshold as well: its reduction
+  // runs only on strands that took every extra step.)
+  if (TVK_HAS(TVK_FEATURE_CONSERVATIVE) && !settled) length_fallback_lanes(v, lr);
 
   finish_lanes(g, b, v, gp, write_tangents);
 }
