@@ -10,8 +10,9 @@
 # ITERATIONS local iterations (default 1,2), 1 length sweep, N 32, the four scenes; GUIDES guides timed (default
 # 32768: 1 M guide vertices), the first 8 tracked against the converged reference of the same model ->
 # OUTDIR/sweep-MODEL-GROOM.csv (MODELS, GROOMS pick a subset). Each sweep first keeps the GPU busy for WARMUP_MS
-# (default 5000), then each setting for 250 ms before its timed frames (the sweep's --warmup-ms-each; without it
-# some of follow-the-leader's 60 Hz rows read 2.5x slow: docs/accuracy.md, "Which model, at which rate"). Then, where Debian's python3-matplotlib is there, scripts/plot-models.py draws
+# (default 5000), then each setting until its frame time has settled (the sweep's warm-up; a fixed one left some of
+# follow-the-leader's 60 Hz rows 2.5x slow: docs/simulation.md, "Slow rows in the sweep"). Then, where Debian's
+# python3-matplotlib is there, scripts/plot-models.py draws
 # OUTDIR/models.png and writes OUTDIR/models.md.
 set -euo pipefail
 OUT=${1:?usage: gpu-models.sh OUTDIR [BINDIR]}

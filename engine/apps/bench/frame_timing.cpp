@@ -5,18 +5,53 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 
 namespace tressvk::bench {
 
+namespace {
+
+double median_of(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// The warm-up frames' GPU times have settled: the median of the newest `window_ms` of them within `tolerance` of the
+// median of the window before.
+bool settled(const std::vector<double>& ms, double window_ms, double tolerance) {
+  std::vector<double> last, before;
+  double sum = 0;
+  size_t i = ms.size();
+  for (; i > 0 && (sum < window_ms || last.size() < 10); --i) {
+    last.push_back(ms[i - 1]);
+    sum += ms[i - 1];
+  }
+  if (sum < window_ms) return false;
+  sum = 0;
+  for (; i > 0 && (sum < window_ms || before.size() < 10); --i) {
+    before.push_back(ms[i - 1]);
+    sum += ms[i - 1];
+  }
+  if (sum < window_ms) return false;
+  const double a = median_of(std::move(last)), b = median_of(std::move(before));
+  return std::abs(a - b) <= tolerance * a;
+}
+
+}  // namespace
+
 FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, TvkInstance inst, model::FramePlanner& planner,
-                       const std::function<TvkSimFrame(uint32_t)>& frame_of, uint32_t warmup, uint32_t frames,
+                       const std::function<TvkSimFrame(uint32_t)>& frame_of, const WarmUp& warmup, uint32_t frames,
                        uint32_t in_flight) {
   FrameTimes out;
   uint64_t steps_total = 0, frames_total = 0;
-  const uint32_t total = warmup + frames;
+  uint32_t first_timed = UINT32_MAX;  // known once the warm-up ends
+  std::vector<double> warm_ms;        // the warm-up frames' GPU times, as they complete
   engine::FrameLoop loop(dev, in_flight, 2, [&](const engine::FrameLoop::Frame& fr) {
-    if (fr.number < warmup || fr.number >= total) return;
-    if (auto ms = fr.timestamps->elapsed_ms(0, 1)) out.frame_ms.push_back(*ms);
+    const auto ms = fr.timestamps->elapsed_ms(0, 1);
+    if (!ms) return;
+    if (fr.number < first_timed) warm_ms.push_back(*ms);
+    else if (fr.number < first_timed + frames) out.frame_ms.push_back(*ms);
   });
   const auto record = [&](uint32_t f) {
     const TvkSimFrame frame = frame_of(f);
@@ -36,20 +71,38 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, TvkInstance in
         ms += timings[i].milliseconds;
       }
       out.dispatches = std::max(out.dispatches, d);
-      if (f > warmup + in_flight && f <= total) out.sim_ms.push_back(ms);
+      if (first_timed != UINT32_MAX && f > first_timed + in_flight && f <= first_timed + frames)
+        out.sim_ms.push_back(ms);
     }
     fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     host::check_tvk(host::record_simulate(ctx, fr.cmd, inst), ctx, "tressvk_cmd_simulate");
     fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     loop.end();
   };
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  for (uint32_t f = 0; f < total; ++f) {
-    if (f == warmup) t0 = std::chrono::steady_clock::now();
+  const auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
+  const auto t_start = std::chrono::steady_clock::now();
+  uint32_t f = 0;
+  for (;; ++f) {
+    if (f >= warmup.frames) {
+      const double elapsed = since(t_start);
+      if (elapsed >= warmup.max_ms) {
+        out.warmup_settled = warmup.max_ms <= 0 || settled(warm_ms, warmup.window_ms, warmup.tolerance);
+        break;
+      }
+      // (tested every 32 frames: a window of small frames holds thousands)
+      if (elapsed >= warmup.min_ms && f % 32u == 0u && settled(warm_ms, warmup.window_ms, warmup.tolerance)) break;
+    }
     record(f);
   }
+  first_timed = f;
+  out.warmup_frames = f;
+  out.warmup_ms = since(t_start);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (; f < first_timed + frames; ++f) record(f);
   loop.finish();
-  out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  out.wall_ms = since(t0);
   out.steps_per_frame = frames_total ? double(steps_total) / double(frames_total) : 0;
   return out;
 }

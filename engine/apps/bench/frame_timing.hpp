@@ -12,19 +12,33 @@
 
 namespace tressvk::bench {
 
+// How long time_frames runs frames before it times them: at least `frames` frames and `min_ms` of wall time, then
+// until the GPU time per frame has settled: the median frame of the last `window_ms` of GPU work within `tolerance`
+// of the window's before it (a GPU's clock can take a second to climb back after the GPU idled for a moment, and a
+// timed window on the climb reads slow), or `max_ms`, whichever comes first. min_ms = max_ms = 0: frames only.
+struct WarmUp {
+  uint32_t frames = 0;
+  double min_ms = 0, max_ms = 0;
+  double window_ms = 100, tolerance = 0.02;
+};
+
 struct FrameTimes {
   std::vector<double> frame_ms;  // per timed frame, the frame's own timestamps
   std::vector<double> sim_ms;    // per timed frame, the sum of the plugin's pass timings (when it was given timestamps)
   uint32_t dispatches = 0;       // most dispatches in a frame (from the plugin's pass timings)
   double steps_per_frame = 0;    // over every recorded frame
   double wall_ms = 0;            // CPU wall time of the timed frames, all of them
+  uint32_t warmup_frames = 0;    // frames run before the timed ones
+  double warmup_ms = 0;          // their wall time
+  bool warmup_settled = true;    // false: WarmUp::max_ms ran out before the frame time settled
 };
 
-// Records warmup + frames frames, frame_of(0 .. warmup + frames - 1), into a frame loop of `in_flight` frames (the
-// context must have been created with that many), waits for the last. `planner` is kept in step with the plugin's to
-// count the steps. Throws engine::Error when a call fails.
+// Records the warm-up frames and then `frames` timed ones, frame_of(0, 1, ...), into one frame loop of `in_flight`
+// frames (the context must have been created with that many; the GPU is never left idle between warm-up and timed
+// frames), waits for the last. `planner` is kept in step with the plugin's to count the steps. Throws engine::Error
+// when a call fails.
 FrameTimes time_frames(const engine::Device& device, TvkContext context, TvkInstance instance,
                        model::FramePlanner& planner, const std::function<TvkSimFrame(uint32_t)>& frame_of,
-                       uint32_t warmup, uint32_t frames, uint32_t in_flight);
+                       const WarmUp& warmup, uint32_t frames, uint32_t in_flight);
 
 }  // namespace tressvk::bench

@@ -166,10 +166,12 @@ int execute_perf_command(const PerfCommand& given) {
     const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
     const double median_length = ref.median_strand_length();
 
-    const uint32_t total = cmd.warmup + cmd.frames;
+    WarmUp warm;
+    warm.frames = cmd.warmup;
     const FrameTimes times = time_frames(
         dev, ctx, inst, ref.planner(), [&](uint32_t f) { return reference::scene_frame(cmd.scene, f, geometry); },
-        cmd.warmup, cmd.frames, cmd.frames_in_flight);
+        warm, cmd.frames, cmd.frames_in_flight);
+    const uint32_t total = times.warmup_frames + cmd.frames;
     const std::vector<double>& frame_ms = times.frame_ms;
     const std::vector<double>& sim_ms = times.sim_ms;
     const uint32_t dispatches = times.dispatches;

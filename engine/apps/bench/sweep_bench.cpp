@@ -79,7 +79,8 @@ std::string csv_of(const nlohmann::json& rows) {
       "groom", "scene", "step_rate_hz", "local_iterations", "length_iterations", "vertices_per_strand", "guides",
       "error_guides", "is_default", "gpu_ms_per_frame", "gpu_ms_per_frame_p99", "steps_per_frame",
       "dispatches_per_frame", "model_error_rms", "model_error_max", "step_error_max", "stretch_max", "stretch_mean",
-      "penetration_depth_rel", "post_contact_speed_mps", "nan_strands", "exploded_strands", "nonfinite_resets"};
+      "penetration_depth_rel", "post_contact_speed_mps", "nan_strands", "exploded_strands", "nonfinite_resets",
+      "warmup_ms"};
   std::string out;
   for (const char* c : kColumns) out += std::string(out.empty() ? "" : ",") + c;
   out += "\n";
@@ -126,6 +127,10 @@ void add_sweep_command(CLI::App& app, SweepCommand& cmd) {
       ->capture_default_str();
   s->add_option("--warmup-ms-each", cmd.warmup_ms_each,
                 "milliseconds of GPU work before each configuration's timed frames (at least)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  s->add_option("--warmup-ms-max", cmd.warmup_ms_max,
+                "milliseconds of warm-up after which a configuration is timed although its frame time has not settled")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   s->add_option("--in-flight", cmd.frames_in_flight, "frames in flight while timing")->capture_default_str()->check(CLI::Range(1, 8));
@@ -304,12 +309,13 @@ int execute_sweep_command(const SweepCommand& given) {
         });
       }
     }
-    // 2. Speed: every configuration back to back after the GPU has worked for --warmup-ms (it reaches its working
-    // clock; timed right after the CPU-bound accuracy runs, it read up to 5x slow), the whole groom, frames in flight,
-    // no readback between timed frames. Each configuration first runs frames for --warmup-ms-each as well: between
-    // two the GPU idles while the host builds the next instance, and a short timed window after that gap (120 frames
-    // of 0.2 ms) read 2.5x slow in some rows, two consecutive ones at a time, and not in the same rows of a second
-    // run with the buffers in the same places (NVIDIA H100, follow-the-leader at 60 Hz, 1 M guide vertices).
+    // 2. Speed: every configuration back to back, the whole groom, frames in flight, no readback between timed
+    // frames, each after a warm-up in the same frame loop that lasts until its frame time has settled (WarmUp): at
+    // least --warmup-ms before the first (timed right after the CPU-bound accuracy runs, it read up to 5x slow) and
+    // --warmup-ms-each before the others, at most --warmup-ms-max. Between two configurations the GPU idles while the
+    // host builds the next instance, and its clock then took up to a second to climb back (NVIDIA H100: 585 to 1980
+    // MHz over 0.8 s, logged with nvidia-smi); a fixed 250 ms warm-up in chunks of 10 frames, each chunk its own
+    // frame loop, still left rows 2.2x slow (follow-the-leader at 60 Hz, 1 M guide vertices, 0.2 ms frames).
     size_t row = 0;
     bool warmed = false;
     for (const Config& c : configs) {
@@ -319,17 +325,13 @@ int execute_sweep_command(const SweepCommand& given) {
       for (const std::string& scene : cmd.scenes) {
         TvkInstance inst = host::create_instance(ctx, timed_assets[c.n], s, p);
         reference::FramePlanner planner(s, grooms[c.n].origin, 0);
-        uint32_t offset = 0;
-        const auto frame_of = [&](uint32_t f) { return reference::scene_frame(scene, offset + f, geometry); };
-        const auto t_warm = std::chrono::steady_clock::now();
-        const double warm_ms = warmed ? cmd.warmup_ms_each : std::max(cmd.warmup_ms, cmd.warmup_ms_each);
+        const auto frame_of = [&](uint32_t f) { return reference::scene_frame(scene, f, geometry); };
+        WarmUp warm;
+        warm.frames = cmd.warmup;
+        warm.min_ms = warmed ? cmd.warmup_ms_each : std::max(cmd.warmup_ms, cmd.warmup_ms_each);
+        warm.max_ms = std::max(warm.min_ms, cmd.warmup_ms_max);
         warmed = true;
-        while (std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_warm).count() < warm_ms) {
-          time_frames(dev, ctx, inst, planner, frame_of, 0, 10, cmd.frames_in_flight);
-          offset += 10;
-        }
-        const FrameTimes t = time_frames(dev, ctx, inst, planner, frame_of, cmd.warmup, cmd.timed_frames,
-                                         cmd.frames_in_flight);
+        const FrameTimes t = time_frames(dev, ctx, inst, planner, frame_of, warm, cmd.timed_frames, cmd.frames_in_flight);
         dev.wait_idle();
         tressvk_destroy_instance(inst);
         nlohmann::json& r = rows[row++];
@@ -337,10 +339,13 @@ int execute_sweep_command(const SweepCommand& given) {
         r["gpu_ms_per_frame_p99"] = percentile(t.frame_ms, 0.99);
         r["steps_per_frame"] = t.steps_per_frame;
         r["dispatches_per_frame"] = t.dispatches;
-        std::printf("%-7s %3.0f Hz  local %u  length %u  N %3u%s  %.4f ms  model rms %.3g max %.3g  step %.2g  stretch %.2g\n",
+        r["warmup_ms"] = t.warmup_ms;
+        r["warmup_settled"] = t.warmup_settled;
+        std::printf("%-7s %3.0f Hz  local %u  length %u  N %3u%s  %.4f ms  model rms %.3g max %.3g  step %.2g  stretch %.2g%s\n",
                     scene.c_str(), c.rate, c.local, c.length, c.n, c == def ? "*" : " ", r["gpu_ms_per_frame"].get<double>(),
                     r["model_error_rms"].get<double>(), r["model_error_max"].get<double>(),
-                    r["step_error_max"].get<double>(), r["stretch_max"].get<double>());
+                    r["step_error_max"].get<double>(), r["stretch_max"].get<double>(),
+                    t.warmup_settled ? "" : "  (frame time still changing after --warmup-ms-max)");
         std::fflush(stdout);
       }
     }
@@ -368,6 +373,7 @@ int execute_sweep_command(const SweepCommand& given) {
       {"frames_in_flight", cmd.frames_in_flight},
       {"warmup_ms", cmd.warmup_ms},
       {"warmup_ms_each", cmd.warmup_ms_each},
+      {"warmup_ms_max", cmd.warmup_ms_max},
       {"median_strand_length_m", median},
       {"default", {{"step_rate_hz", def.rate}, {"local_iterations", def.local}, {"length_iterations", def.length},
                    {"vertices_per_strand", def.n}}},

@@ -30,6 +30,7 @@ struct SweepCommand {
   uint32_t timed_frames = 120, warmup = 30, frames_in_flight = 3;
   double warmup_ms = 1000;      // GPU work before the first timed configuration (its clock ramps up)
   double warmup_ms_each = 250;  // and at least this much before each configuration (after the gap between two)
+  double warmup_ms_max = 5000;  // then until the frame time settles (frame_timing.hpp, WarmUp), at most this long
   double reference_rate = 3840;
   uint32_t reference_local_iterations = 8, reference_length_iterations = 4, reference_vertices = 128;
   uint32_t threads = 0;         // reference threads (0: one per scene, at most the hardware's)
