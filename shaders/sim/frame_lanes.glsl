@@ -19,6 +19,14 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_shuffle : require
 #extension GL_KHR_shader_subgroup_vote : require
+#define TVK_EXCHANGE_LOOP
+#else
+// Loops whose every round is an exchange (a barrier) stay loops in the shared-memory variant: lavapipe compiles a
+// workgroup's barriers as coroutine suspensions, at a cost that grows with their number, and unrolled they were
+// hundreds (the conservative model's 32-vertex pipeline took 47 s to compile, 19 s with these loops kept). On an
+// NVIDIA H100 the variant measured the same either way (64-vertex strands, both models).
+#extension GL_EXT_control_flow_attributes : require
+#define TVK_EXCHANGE_LOOP [[dont_unroll]]
 #endif
 #include "sim/layout.glsl"
 layout(local_size_x_id = 0) in;
@@ -118,7 +126,7 @@ vec4 lanes_get2(uint src) { return s_put2[tvk_slot + src]; }
 float lanes_max(uint r, float x) {
   s_red[r] = isnan(x) ? uintBitsToFloat(0x7f800000u) : x;
   barrier();
-  for (uint s = LANES / 2u; s > 0u; s >>= 1u) {
+  TVK_EXCHANGE_LOOP for (uint s = LANES / 2u; s > 0u; s >>= 1u) {
     if (r < s) s_red[r] = max(s_red[r], s_red[r + s]);
     barrier();
   }
@@ -189,7 +197,7 @@ void finish_lanes(uint g, uint b, uint v, GroupParams gp, bool write_tangents) {
     vec3 last = vec3(0.0);
     bool found = false;
     int j = vert ? int(v) : -1;
-    for (uint round = 0u; round < N; ++round) {
+    TVK_EXCHANGE_LOOP for (uint round = 0u; round < N; ++round) {
       vec4 t = lanes_get0(j >= 0 ? uint(j) : v);
       if (j >= 0) {
         if (t.w > 0.5) {

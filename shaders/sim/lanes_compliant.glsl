@@ -27,7 +27,7 @@ const float kConservativeFallbackStretch = 4e-3;  // the reference's (length_fal
 // of type T (float for the length rows, vec3 for the shape and transverse rows).
 #define TVK_TRIDIAGONAL(name, T)                                                                                      \
   T name(uint r, float a, float b, float c, T d) {                                                                    \
-    for (uint s = 1u; s < LANES; s <<= 1u) {                                                                          \
+    TVK_EXCHANGE_LOOP for (uint s = 1u; s < LANES; s <<= 1u) {                                                                \
       float ib = 1.0 / b;                                                                                             \
       lanes_put(r, vec4(a, ib, c, 0.0), to4(d), vec4(0.0));                                                           \
       uint lo = r >= s ? r - s : r;                                                                                   \
@@ -149,7 +149,7 @@ ShapeTarget lanes_shape_target(uint v, LaneRest lr, bool row, vec3 rest_dir) {
   vec4 q = vec4(0, 0, 0, 1);
   int j = row ? lr.frame_edge : -1;
   t.jf = -1;
-  for (uint round = 0u; round < N; ++round) {
+  TVK_EXCHANGE_LOOP for (uint round = 0u; round < N; ++round) {
     uint src = j >= 0 ? uint(j) : v;
     vec4 qj = lanes_get0(src);
     vec4 info = lanes_get1(src);
@@ -461,7 +461,7 @@ void local_shape_lanes(uint g, uint v, LaneRest lr, GroupParams gp) {
     lanes_put(v, turn, vec4(turns_here ? 1.0 : 0.0, float(lr.frame_edge), 0.0, 0.0), vec4(0.0));
     vec4 q = vec4(0, 0, 0, 1);
     int j = row ? lr.frame_edge : -1;
-    for (uint round = 0u; round < N; ++round) {
+    TVK_EXCHANGE_LOOP for (uint round = 0u; round < N; ++round) {
       uint src = j >= 0 ? uint(j) : v;
       vec4 qj = lanes_get0(src);
       vec4 info = lanes_get1(src);
@@ -578,6 +578,18 @@ void transverse_lanes(uint v, LaneRest lr, vec3 move, float lam) {
   if (vert && L_pos.w > 0.0) L_pos = vec4(L_pos.xyz + delta, L_pos.w);
 }
 
+// An extra Newton step's weight: how far over kCompliantStretchTol the strand's worst segment is, whole at twice it
+// (as the reference: continuous in the state); settled where none is over it (no step).
+float extra_newton_weight(uint v, LaneRest lr, out bool settled) {
+  lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
+  vec4 np = lanes_get0(lane_after(v));
+  float off = 0.0;
+  if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
+  float worst = lanes_max(v, off);
+  settled = !(worst > kCompliantStretchTol);
+  return min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0);
+}
+
 // The conservative model's length fallback (the reference's, after its extra Newton steps): where a segment is still
 // off its length by more than kConservativeFallbackStretch, a follow-the-leader clean-up from the root, its move
 // weighted from 0 there to whole at twice that; strands with a free tip only. The walk hands each cleaned vertex to
@@ -594,7 +606,7 @@ void length_fallback_lanes(uint v, LaneRest lr) {
   float weight = clamp((worst - kConservativeFallbackStretch) / kConservativeFallbackStretch, 0.0, 1.0);
   if (!(weight > 0.0)) return;
   vec3 mine = L_pos.xyz, cleaned = L_pos.xyz;
-  for (uint r = 1u; r < N; ++r) {
+  TVK_EXCHANGE_LOOP for (uint r = 1u; r < N; ++r) {
     lanes_put(v, vec4(cleaned, 0.0), vec4(0.0), vec4(0.0));
     vec3 parent = lanes_get0(lane_before(v)).xyz;
     if (v == r && L_pos.w > 0.0) {
@@ -635,21 +647,34 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
   vec3 move = vec3(0.0);
   float lam = 0.0;
   float reach_floor = kCompliantReachFloorRel * strand_rest_length(g) / float(N - 1u);
+  // The Newton steps: one, the transverse solve, length_iterations more, then up to kCompliantExtraNewton extra ones
+  // while a segment is off by more than kCompliantStretchTol (extra_newton_weight).
+  bool settled = false;  // the worst segment within kCompliantStretchTol: no extra step, no fallback
+#ifdef TVK_LANES_SUBGROUP
   newton_lanes(v, lr, reach_floor, 1.0, move, lam);
   transverse_lanes(v, lr, move, lam);
   for (uint it = 0u; it < gp.length_iterations; ++it) newton_lanes(v, lr, reach_floor, 1.0, move, lam);
-  bool settled = false;  // the worst segment within kCompliantStretchTol: no extra step, no fallback
   for (uint extra = 0u; extra < kCompliantExtraNewton; ++extra) {
-    lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
-    vec4 np = lanes_get0(lane_after(v));
-    float off = 0.0;
-    if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
-    // Weighted by how far over the tolerance the worst segment is, as the reference (continuous in the state).
-    float worst = lanes_max(v, off);
-    settled = !(worst > kCompliantStretchTol);
+    float weight = extra_newton_weight(v, lr, settled);
     if (settled) break;
-    newton_lanes(v, lr, reach_floor, min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0), move, lam);
+    newton_lanes(v, lr, reach_floor, weight, move, lam);
   }
+#else
+  // The same steps in one loop, so that the step's code and its barriers are there once: lavapipe compiles a
+  // workgroup's barriers as coroutine suspensions, at a cost that grows with their number (the straight groom's
+  // 32-vertex pipeline in `run`, with the loops below: 41 -> 16 s). On an NVIDIA H100 the subgroup variant measured
+  // 8 % slower this way (the conservative model at 240 Hz, Ratboy 227 -> 247 us), the shared-memory one the same.
+  const uint plain = 1u + gp.length_iterations;
+  TVK_EXCHANGE_LOOP for (uint k = 0u; k < plain + kCompliantExtraNewton; ++k) {
+    float weight = 1.0;
+    if (k >= plain) {
+      weight = extra_newton_weight(v, lr, settled);
+      if (settled) break;
+    }
+    newton_lanes(v, lr, reach_floor, weight, move, lam);
+    if (k == 0u) transverse_lanes(v, lr, move, lam);
+  }
+#endif
   // (A strand the extra steps left within their tolerance is below the fallback's threshold as well: its reduction
   // runs only on strands that took every extra step.)
   if (TVK_HAS(TVK_FEATURE_CONSERVATIVE) && !settled) length_fallback_lanes(v, lr);
