@@ -428,8 +428,9 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
     // 4. The move and the multiplier come out of the solve: dx_v = W G^T dlambda, mu_v = -dlambda_v.
     vec3 dx = v < N ? node_v3(node + 31u) : vec3(0.0);
     vec3 dl = row && apply ? -node_v3(node + 34u) : vec3(0.0);
-    // This node is read here before this lane writes it again; the solver's next writes follow two barriers.
-    if (v >= 1u && v < N && w_self > 0.0 && apply) L_pos = vec4(L_pos.xyz + dx, L_pos.w);
+    // This node is read here before this lane writes it again; the solver's next writes follow two barriers. The
+    // root moves too where it is free (no pinned vertex: the first constraint's reaction on its frame edge reaches it).
+    if (v < N && w_self > 0.0 && apply) L_pos = vec4(L_pos.xyz + dx, L_pos.w);
     if (row) lam += dl;
   }
 }
