@@ -5,7 +5,8 @@
 // Diagnostic only: usage conditioning_probe (FILE.tfx [FILE.tfxbone] | straight|curly|long128) [frames] [scenes...]
 // Environment: PROBE_PASSES=1 replays the worst frame pass by pass (PROBE_GUIDE=g: show guide g's segments);
 // PROBE_DETAIL=1 shows the worst strand; PROBE_NOCAPS=1 drops capsules; PROBE_VSP, PROBE_LOCAL, PROBE_GLOBAL,
-// PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED, PROBE_LIT (local iterations) override parameters.
+// PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED, PROBE_LIT (local iterations) override parameters; PROBE_FIRST=1 probes the
+// first frame too (below).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -67,7 +68,17 @@ int main(int argc, char** argv) {
   for (int i = arg + 1; i < argc; ++i) scenes.emplace_back(argv[i]);
   if (scenes.empty()) scenes = scene_names();
   for (const std::string& scene : scenes) {
-    Simulator a = make_sim(hair, probe_params(), probe_settings()), b = make_sim(hair, probe_params(), probe_settings());
+    // PROBE_FIRST=1: the first frame as well. It starts from the skinned rest (each simulator resets to it), so the
+    // second one's groom has every rest coordinate moved by one float ulp instead: the GPU computes that start in
+    // float, the reference in double.
+    tressvk::asset::HairAsset hair_b = hair;
+    const bool first = std::getenv("PROBE_FIRST") != nullptr;
+    if (first) {
+      std::mt19937 jitter(11);
+      for (auto& p : hair_b.rest_positions)
+        for (int c = 0; c < 3; ++c) p[c] = std::nextafter(p[c], (jitter() & 1u) ? INFINITY : -INFINITY);
+    }
+    Simulator a = make_sim(hair, probe_params(), probe_settings()), b = make_sim(hair_b, probe_params(), probe_settings());
     const SceneGeometry geo = scene_geometry(a.rest());
     const double median = a.median_strand_length();
     std::mt19937 rng(7);
