@@ -579,14 +579,17 @@ void transverse_lanes(uint v, LaneRest lr, vec3 move, float lam) {
   if (vert && L_pos.w > 0.0) L_pos = vec4(L_pos.xyz + delta, L_pos.w);
 }
 
+// How far segment v (the lane's, with a free end) is off its rest length, relative to it; 0 for the tip's lane.
+float segment_off(uint v, LaneRest lr) {
+  lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
+  vec4 np = lanes_get0(lane_after(v));
+  return v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0) ? abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len : 0.0;
+}
+
 // An extra Newton step's weight: how far over kCompliantStretchTol the strand's worst segment is, whole at twice it
 // (as the reference: continuous in the state); settled where none is over it (no step).
 float extra_newton_weight(uint v, LaneRest lr, out bool settled) {
-  lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
-  vec4 np = lanes_get0(lane_after(v));
-  float off = 0.0;
-  if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
-  float worst = lanes_max(v, off);
+  float worst = lanes_max(v, segment_off(v, lr));
   settled = !(worst > kCompliantStretchTol);
   return min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0);
 }
@@ -597,10 +600,7 @@ float extra_newton_weight(uint v, LaneRest lr, out bool settled) {
 // the next lane, one round a vertex, on the strands that need it (the condition is the strand's, as the extra
 // steps' is).
 void length_fallback_lanes(uint v, LaneRest lr) {
-  lanes_put(v, L_pos, vec4(0.0), vec4(0.0));
-  vec4 np = lanes_get0(lane_after(v));
-  float off = 0.0;
-  if (v + 1u < N && (L_pos.w > 0.0 || np.w > 0.0)) off = abs(length(np.xyz - L_pos.xyz) - lr.len) / lr.len;
+  float off = segment_off(v, lr);
   if (v + 1u == N && !(L_pos.w > 0.0)) off = 3.0e38;  // a pinned tip: no fallback
   float worst = lanes_max(v, off);
   if (!(worst < 1.0e38)) return;
@@ -662,9 +662,10 @@ void length_lanes(uint g, uint b, uint v, LaneRest lr, GroupParams gp, bool writ
   }
 #else
   // The same steps in one loop, so that the step's code and its barriers are there once: lavapipe compiles a
-  // workgroup's barriers as coroutine suspensions, at a cost that grows with their number (the straight groom's
-  // 32-vertex pipeline in `run`, with the loops below: 41 -> 16 s). On an NVIDIA H100 the subgroup variant measured
-  // 8 % slower this way (the conservative model at 240 Hz, Ratboy 227 -> 247 us), the shared-memory one the same.
+  // workgroup's barriers as coroutine suspensions, at a cost that grows with their number (with this loop and the
+  // exchange loops kept, TVK_EXCHANGE_LOOP, the conservative model's 32-vertex pipelines compiled in 13-16 s instead
+  // of 50). On an NVIDIA H100 the subgroup variant measured 8 % slower this way (the conservative model at 240 Hz,
+  // Ratboy 227 -> 247 us), the shared-memory one the same.
   const uint plain = 1u + gp.length_iterations;
   TVK_EXCHANGE_LOOP for (uint k = 0u; k < plain + kCompliantExtraNewton; ++k) {
     float weight = 1.0;

@@ -861,14 +861,19 @@ void Simulator::length_and_collision(const Substep& st) {
       // Each is weighted by how far over the tolerance the worst segment is (0 at it, whole from twice it), so that
       // the step is a continuous function of the state: as a hard switch, a float state just under the tolerance
       // and its double twin just over it took different steps (1-frame differences of 3e-4 of the strand length).
-      bool settled = false;  // within kCompliantStretchTol, so below the fallback's threshold too
-      for (uint32_t extra = 0; extra < kCompliantExtraNewton; ++extra) {
+      // The strand's worst segment (with a free end): how far off its rest length, relative to it.
+      const auto worst_off = [&] {
         double worst = 0.0;
         for (uint32_t v = 0; v + 1 < n; ++v) {
           if (!movable(b + v) && !movable(b + v + 1)) continue;
           const double rest = rest_.rest_length[b + v];
           worst = std::max(worst, std::abs(length(pos_[b + v + 1] - pos_[b + v]) - rest) / rest);
         }
+        return worst;
+      };
+      bool settled = false;  // within kCompliantStretchTol, so below the fallback's threshold too
+      for (uint32_t extra = 0; extra < kCompliantExtraNewton; ++extra) {
+        const double worst = worst_off();
         settled = !(worst > kCompliantStretchTol);
         if (settled) break;
         solve_lengths(b, std::min((worst - kCompliantStretchTol) / kCompliantStretchTol, 1.0));
@@ -880,12 +885,7 @@ void Simulator::length_and_collision(const Substep& st) {
       // weighted from 0 there to whole at twice that, continuous in the state as the extra Newton steps are. Strands
       // with a free tip only (from the root alone a pinned tip would keep the whole error next to it).
       if (length_model_ == LengthModel::kConservative && !settled && movable(b + n - 1)) {
-        double worst = 0.0;
-        for (uint32_t v = 0; v + 1 < n; ++v) {
-          if (!movable(b + v) && !movable(b + v + 1)) continue;
-          const double rest = rest_.rest_length[b + v];
-          worst = std::max(worst, std::abs(length(pos_[b + v + 1] - pos_[b + v]) - rest) / rest);
-        }
+        const double worst = worst_off();
         const double weight =
             std::clamp((worst - kConservativeFallbackStretch) / kConservativeFallbackStretch, 0.0, 1.0);
         if (weight > 0.0) {
