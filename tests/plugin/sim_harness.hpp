@@ -9,6 +9,7 @@
 #include <tressvk/tressvk.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,12 @@ struct GpuState {
 
 // Serialises an asset and loads it through the plugin (exercising the reader and the recorded upload).
 TvkAsset load_asset(TvkContext ctx, const asset::HairAsset& hair);
+// Owns a loaded asset, so that a failed REQUIRE (an exception) still destroys it before its context: otherwise the
+// context's teardown reports it leaked and the device's reports its buffers, outside the failing test.
+struct AssetDeleter {
+  void operator()(TvkAsset a) const { tressvk_destroy_asset(a); }
+};
+using AssetHandle = std::unique_ptr<TvkAsset_T, AssetDeleter>;
 
 class GpuInstance {
  public:

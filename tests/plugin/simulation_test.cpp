@@ -55,13 +55,13 @@ template <class Body>
 void side_by_side(const asset::HairAsset& hair, const std::vector<TvkSimParams>& params, const TvkSimSettings& settings,
                   Body&& body) {
   test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
+  test::AssetHandle owned(test::load_asset(ctx.get(), hair));
+  TvkAsset a = owned.get();
   {
     test::GpuInstance gpu(ctx.get(), a, params, settings);
     reference::Simulator ref(hair, params, settings);
     body(gpu, ref, reference::scene_geometry(ref.rest()));
   }
-  tressvk_destroy_asset(a);
 }
 
 // The same with the default parameters and settings.
@@ -75,7 +75,8 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
                       TvkSimSettings settings = TvkSimSettings TVK_SIM_SETTINGS_DEFAULT_INIT, float frame_dt = 0.0f) {
   if (params.empty()) params = default_params(hair);
   test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
+  test::AssetHandle owned(test::load_asset(ctx.get(), hair));
+  TvkAsset a = owned.get();
   SceneResult result;
   {
     test::GpuInstance gpu(ctx.get(), a, params, settings);
@@ -113,7 +114,6 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
     }
     result.passes = gpu.recorded_passes();
   }
-  tressvk_destroy_asset(a);
   return result;
 }
 
@@ -300,7 +300,8 @@ TEST_CASE("the far scene (10 km from the origin) matches shake", "[plugin][simul
   const auto params = default_params(hair);
   const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
   test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
+  test::AssetHandle owned(test::load_asset(ctx.get(), hair));
+  TvkAsset a = owned.get();
   {
     test::GpuInstance near_inst(ctx.get(), a, params, settings), far_inst(ctx.get(), a, params, settings);
     reference::Simulator ref(hair, params, settings);
@@ -317,7 +318,6 @@ TEST_CASE("the far scene (10 km from the origin) matches shake", "[plugin][simul
     INFO("far vs shake, max relative difference " << worst);
     CHECK(worst <= 1e-5);
   }
-  tressvk_destroy_asset(a);
 }
 
 TEST_CASE("strands far from the asset origin keep strand-sized precision", "[plugin][simulation]") {
@@ -497,7 +497,8 @@ TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][sim
   stiff[0].global_stiffness = 0.5f;
   const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
   test::PluginContext ctx = test::create_plugin_context();
-  TvkAsset a = test::load_asset(ctx.get(), hair);
+  test::AssetHandle owned(test::load_asset(ctx.get(), hair));
+  TvkAsset a = owned.get();
   {
     test::GpuInstance g1(ctx.get(), a, soft, settings), g2(ctx.get(), a, stiff, settings);
     reference::Simulator r1(hair, soft, settings), r2(hair, stiff, settings);
@@ -523,7 +524,6 @@ TEST_CASE("instances sharing one asset keep their own parameters", "[plugin][sim
     CHECK(e2 <= kStepErrorBound);
     CHECK(apart > 1e-3);  // different parameters really took effect
   }
-  tressvk_destroy_asset(a);
 }
 
 namespace {
