@@ -54,6 +54,8 @@ void run_substep(uint g, uint b, uint s, bool last) {
 void main() {
   uint g = gl_GlobalInvocationID.x;
   if (g >= pc.guide_count || pc.step_count == 0u) return;
+  float quiet = frame_still() ? anchor[g].w : 0.0;  // a moving frame reads nothing more
+  if (guide_asleep(quiet)) return;  // one thread per guide: no barrier or subgroup operation to keep
   frame_storage_begin(g);
   uint b = strand_base(g);
   for (uint v = 0u; v < N; ++v) {
@@ -64,12 +66,14 @@ void main() {
   // The last substep is peeled so that only it compiles the tangent writes.
   for (uint s = 0u; s + 1u < pc.step_count; ++s) run_substep(g, b, s, false);
   run_substep(g, b, pc.step_count - 1u, true);
+  float moved2 = 0.0;
   for (uint v = 0u; v < N; ++v) {
     uint i = b + v * TVK_BLOCK;
+    if (frame_measures()) moved2 = max(moved2, frame_move2(TVK_POS(i), i));
     pos[i] = TVK_POS(i);
     prev[i] = TVK_PREV(i);
   }
-  anchor[g] = tvk_anchor_now;
+  anchor[g] = vec4(tvk_anchor_now.xyz, quiet_frames_after(quiet, moved2));
 
   if (K > 0u) {
     // Follow hairs from the final guide (skinning data of the last substep, as the follow pass).

@@ -240,6 +240,13 @@ void main() {
     tvk_active = false;
     g = pc.guide_count - 1u;
   }
+  // A sleeping guide (layout.glsl) is padding too: it returns, or where the conservative shape's barriers need it,
+  // runs its steps and writes nothing (and the workgroup returns when all its strands sleep, below).
+  float quiet = frame_still() ? anchor[g].w : 0.0;  // a moving frame reads nothing more
+  if (tvk_active && guide_asleep(quiet)) {  // uniform over the strand's lanes
+    if (kConservativeOn == 0u) return;
+    tvk_active = false;
+  }
   uint b = strand_base(g);
   bool vert = v < N;
   uint i = b + v * TVK_BLOCK;
@@ -256,9 +263,11 @@ void main() {
   if (kConservativeOn != 0u) {
     if (gl_LocalInvocationIndex == 0u) s_iters = 0u;
     barrier();
-    atomicMax(s_iters, gp.local_iterations);
+    // The most iterations of the workgroup's active strands, plus one: 0 when every strand is padding or asleep.
+    if (tvk_active) atomicMax(s_iters, gp.local_iterations + 1u);
     barrier();
-    tvk_iterations = s_iters;
+    if (s_iters == 0u) return;  // uniform over the workgroup
+    tvk_iterations = s_iters - 1u;
   }
   for (uint s = 0u; s < pc.step_count; ++s) {
     tvk_step = pc.step_index + s;
@@ -279,12 +288,14 @@ void main() {
     if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_lanes(g, v, lr, gp);
     length_lanes(g, b, v, lr, gp, s + 1u == pc.step_count);
   }
+  // Every lane of the strand reduces (the exchange's rule); pc.rest_move is uniform.
+  float moved2 = frame_measures() ? lanes_max(v, vert ? frame_move2(L_pos, i) : 0.0) : 0.0;
   if (vert && tvk_active) {
     pos[i] = L_pos;
     prev[i] = L_prev;
     if (TVK_HAS(TVK_FEATURE_VSP)) prevprev[i] = L_prevprev;
   }
-  if (v == 0u && tvk_active) anchor[g] = L_anchor;
+  if (v == 0u && tvk_active) anchor[g] = vec4(L_anchor.xyz, quiet_frames_after(quiet, moved2));
 
   if (K > 0u) {
     vec4 root_now = lanes_root_frame(g, b, v);

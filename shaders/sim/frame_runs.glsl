@@ -298,6 +298,8 @@ void main() {
   tvk_lane_base = gl_SubgroupInvocationID - tvk_r;
   uint g = gl_WorkGroupID.x * (WORKGROUP_SIZE / RL) + (gl_SubgroupID * gl_SubgroupSize + tvk_lane_base) / RL;
   if (g >= pc.guide_count || pc.step_count == 0u) return;  // uniform over the strand's lanes
+  float quiet = frame_still() ? anchor[g].w : 0.0;  // a moving frame reads nothing more
+  if (guide_asleep(quiet)) return;  // uniform over the strand's lanes, as padding
   uint b = strand_base(g);
   R_anchor = vec4(0.0);
   [[unroll]] for (uint k = 0u; k < RUN; ++k) {
@@ -336,15 +338,18 @@ void main() {
     if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) runs_local_shape(g, gp);
     runs_length(g, b, gp, s + 1u == pc.step_count);
   }
+  float moved2 = 0.0;
   [[unroll]] for (uint k = 0u; k < RUN; ++k) {
     uint v = vtx(k);
     if (v < N) {
+      if (frame_measures()) moved2 = max(moved2, frame_move2(R_pos[k], b + v * TVK_BLOCK));
       pos[b + v * TVK_BLOCK] = R_pos[k];
       prev[b + v * TVK_BLOCK] = R_prev[k];
       if (TVK_HAS(TVK_FEATURE_VSP)) prevprev[b + v * TVK_BLOCK] = R_prevprev[k];
     }
   }
-  if (tvk_r == 0u) anchor[g] = R_anchor;
+  moved2 = -runs_min(-moved2);
+  if (tvk_r == 0u) anchor[g] = vec4(R_anchor.xyz, quiet_frames_after(quiet, moved2));
 
   if (K > 0u) {
     vec4 root_now = runs_root_frame(g, b);

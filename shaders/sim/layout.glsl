@@ -120,7 +120,7 @@ layout(std430, set = 0, binding = 15) buffer Counters { uint counters[]; };
 // Per guide: xyz its anchor in simulation space (the skinned rest root at the current step), w = 0.
 layout(std430, set = 0, binding = 16) buffer Anchors { vec4 anchor[]; };
 
-layout(push_constant) uniform PushConstants {   // 28 bytes
+layout(push_constant) uniform PushConstants {   // 32 bytes
   uint guide_count;     // G: dispatches cover exactly G guides' work, every thread bounds-checks
   uint step_index;      // index into step_params
   uint skin_base;       // first vec4 of this substep's skinning data in skin[]
@@ -128,6 +128,36 @@ layout(push_constant) uniform PushConstants {   // 28 bytes
   uint counter_index;   // this instance's slot in counters[]
   uint step_count;      // fused frame kernel: substeps to run (step_index .. step_index + step_count - 1)
   uint skin_stride;     // fused frame kernel: vec4 of skinning data per substep
+  float rest_move;      // fused frame kernels: in a still frame, the sleeping threshold (m per step, below); else 0
 } pc;
+
+// ---- sleeping strands (the fused frame kernels; the pass-per-dispatch path never sleeps) -------------------------
+// A frame is still when the host finds that every input its steps see (skinning, step and group parameters) is the
+// same as in the previous frame's last step: nothing but the strands' own motion can move them. In a still frame
+// |pc.rest_move| is the sleeping threshold in metres per step (TvkSimSettings::sleep_below times the groom's median
+// strand length, the length every error here is relative to); it is 0 in a frame that is not still. anchor[g].w
+// counts the measured still frames in a row in which no vertex of guide g moved more than that per step over the
+// frame; once it reaches kQuietFrames the guide sleeps: the kernels treat it as padding (no state read, nothing
+// written: positions, tangents and follows keep their values) until a frame that is not still sets the count back to
+// 0. The move is measured on positions across the frame (pos - prev is not the velocity: the length pass's velocity
+// correction keeps it nonzero at rest), so a swing's turning point, where the velocity passes through zero but the
+// vertex still accelerates, is not rest. Measuring re-reads the frame's starting positions (frame_move2), so only one
+// still frame in kMeasureEvery measures (rest_move > 0; the others pass it negative and keep the count): a groom that
+// never comes to rest pays a quarter of that read, and a moving frame reads nothing more at all.
+const float kQuietFrames = 3.0;
+bool frame_still() { return pc.rest_move != 0.0; }
+bool frame_measures() { return pc.rest_move > 0.0; }
+bool guide_asleep(float quiet) { return frame_still() && quiet >= kQuietFrames; }
+// The squared move over the frame of the vertex at element i, whose end-of-frame position is p (before it is stored).
+float frame_move2(vec4 p, uint i) {
+  vec3 d = p.xyz - pos[i].xyz;
+  return dot(d, d);
+}
+// The count after this frame, from the count before it and the largest squared move of the strand's vertices.
+float quiet_frames_after(float quiet, float moved2) {
+  if (!frame_measures()) return frame_still() ? quiet : 0.0;
+  float limit = pc.rest_move * float(pc.step_count);
+  return moved2 <= limit * limit ? min(quiet + 1.0, kQuietFrames) : 0.0;
+}
 
 #endif

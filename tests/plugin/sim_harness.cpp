@@ -66,6 +66,7 @@ void GpuInstance::read_state() {
   state_.prev = std::move(s.previous);
   state_.prevprev = std::move(s.previous_previous);
   state_.tangent = std::move(s.tangents);
+  state_.anchors = std::move(s.anchors);
 }
 
 std::vector<std::string> GpuInstance::recorded_passes() const {

@@ -23,6 +23,7 @@ struct GpuState {
   std::vector<Point> prev;          // G*N
   std::vector<Point> prevprev;      // G*N
   std::vector<sim::Vec4> tangent;   // G*(K+1)*N
+  std::vector<std::array<float, 4>> anchors;  // G, as the GPU holds them (w: the quiet-frame count, tressvk.h)
 };
 
 // Serialises an asset and loads it through the plugin (exercising the reader and the recorded upload).

@@ -23,6 +23,9 @@ void add_simulation_options(CLI::App& subcommand, TvkSimParams& params, TvkSimSe
   subcommand.add_option("--step-rate", settings.time.step_rate, "simulation steps per second")->capture_default_str();
   subcommand.add_option("--local-iterations", params.local_iterations)->capture_default_str();
   subcommand.add_option("--length-iterations", params.length_iterations)->capture_default_str();
+  subcommand.add_option("--sleep-below", settings.sleep_below,
+                        "a still groom's guides sleep below this move per step (fraction of the strand; 0 = never)")
+      ->capture_default_str();
 }
 
 bool write_json(const nlohmann::json& j, const std::string& path, const char* tool) {

@@ -190,6 +190,10 @@ int execute_perf_command(const PerfCommand& given) {
     const uint64_t frame_byte_count = frame_bytes(guide_vertices, follow_vertices, vsp, local_shape);
     const CopyTiming copy = time_copy(dev, frame_byte_count, 50);
 
+    // Guides asleep after the timed frames (a still groom at rest, docs/simulation.md "Sleeping").
+    uint32_t guides_asleep = 0;
+    for (const auto& a : host::read_hair_state(dev, inst).anchors) guides_asleep += a[3] >= 3.0f ? 1u : 0u;
+
     // Step error, outside the timed frames: load the reference with the GPU state, advance both one frame.
     double step_error = 0;
     uint32_t error_frames = 0;
@@ -232,6 +236,8 @@ int execute_perf_command(const PerfCommand& given) {
         {"follow_per_guide", groom.follow_per_guide},
         {"guide_vertices", guide_vertices},
         {"step_rate_hz", cmd.settings.time.step_rate},
+        {"sleep_below", cmd.settings.sleep_below},
+        {"guides_asleep", guides_asleep},
         {"steps_per_frame", steps_per_frame},
         {"frames", cmd.frames},
         {"warmup", cmd.warmup},

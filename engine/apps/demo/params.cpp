@@ -99,6 +99,7 @@ Params parse_params(std::string_view text, std::string_view name) {
     {"step_rate", [&](const json& v, const std::string& f) { st.time.step_rate = r.number(v, f, 30, 480); }},
     {"max_steps_per_frame", [&](const json& v, const std::string& f) { st.time.max_steps_per_frame = r.count(v, f, 1, TVK_MAX_STEPS_PER_FRAME); }},
     {"max_steps_sustained", [&](const json& v, const std::string& f) { st.time.max_steps_sustained = r.count(v, f, 0, TVK_MAX_STEPS_PER_FRAME); }},
+    {"sleep_below", [&](const json& v, const std::string& f) { st.sleep_below = r.number(v, f, 0, 1e-3); }},
   });
   TvkHairMaterial& m = p.material;
   r.section(root, "material", {
@@ -170,7 +171,8 @@ std::string params_json(const Params& p) {
                      {"tip_separation", shortest(s.tip_separation)}, {"rigid_below", shortest(s.rigid_below)}};
   j["settings"] = {{"gravity", v3(p.settings.gravity)}, {"step_rate", shortest(p.settings.time.step_rate)},
                    {"max_steps_per_frame", p.settings.time.max_steps_per_frame},
-                   {"max_steps_sustained", p.settings.time.max_steps_sustained}};
+                   {"max_steps_sustained", p.settings.time.max_steps_sustained},
+                   {"sleep_below", shortest(p.settings.sleep_below)}};
   j["material"] = {{"base_color", v3(m.base_color)}, {"tip_color", v3(m.tip_color)}, {"kd", shortest(m.kd)}, {"ks1", shortest(m.ks1)},
                    {"ex1", shortest(m.ex1)}, {"ks2", shortest(m.ks2)}, {"ex2", shortest(m.ex2)}, {"shift1", shortest(m.shift1)}, {"shift2", shortest(m.shift2)},
                    {"strand_width", shortest(m.strand_width)}, {"tip_width_ratio", shortest(m.tip_width_ratio)},

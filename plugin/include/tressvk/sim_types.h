@@ -159,9 +159,15 @@ typedef struct TvkSimFrame {
 typedef struct TvkSimSettings {
   float gravity[3];              /* m/s^2, world. Default (0, -9.81, 0) */
   TvkTimeSettings time;
+  float sleep_below;             /* 0..1e-3, a fraction of the groom's median strand length per step: in still
+                                    frames (every input the same as in the frame before: transform, bones, wind,
+                                    capsules, parameters), a guide none of whose vertices moved more than this per
+                                    step through 3 frames in a row sleeps: it costs almost nothing and keeps its state
+                                    until a frame is not still. A groom at rest under a still head then costs far
+                                    less than a moving one. 0 = never sleep. Default 1e-6 */
 } TvkSimSettings;
 
-#define TVK_SIM_SETTINGS_DEFAULT_INIT { { 0.0f, -9.81f, 0.0f }, TVK_TIME_SETTINGS_DEFAULT_INIT }
+#define TVK_SIM_SETTINGS_DEFAULT_INIT { { 0.0f, -9.81f, 0.0f }, TVK_TIME_SETTINGS_DEFAULT_INIT, 1e-6f }
 
 #ifdef __cplusplus
 }

@@ -200,7 +200,8 @@ TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* fra
  * call it after the parameters are set, e.g. at load time with the first frame. Records nothing; optional. */
 TVK_API TvkResult tressvk_prewarm_instance(TvkInstance instance, const TvkSimFrame* frame);
 
-/* The simulated state, for hosts that draw or read it themselves. Per-vertex buffers hold strands in blocks of
+/* The simulated state, for hosts that draw or read it themselves (read only: a guide that sleeps,
+ * TvkSimSettings::sleep_below, would not see a host's write). Per-vertex buffers hold strands in blocks of
  * TVK_STRAND_BLOCK, vertex-major within a block (so that GPU threads walking neighbouring strands read neighbouring
  * addresses): vertex v of rendered strand s (guides first, then follow layers) is element
  *   i = tvk_vertex_index(s, v, vertices_per_strand)
@@ -219,7 +220,8 @@ typedef struct TvkInstanceBuffers {
   VkBuffer previous_positions;       /* vec4 per guide vertex, the previous step (offset from the same anchor) */
   VkBuffer previous_previous_positions; /* vec4 per guide vertex, two steps back (for checking against the
                                         reference, tressvk::reference::Simulator::set_state) */
-  VkBuffer anchors;                  /* vec4 per guide: xyz its anchor in simulation space, w = 0 */
+  VkBuffer anchors;                  /* vec4 per guide: xyz its anchor in simulation space; w the guide's count of
+                                        quiet still frames, >= 3 while it sleeps (TvkSimSettings::sleep_below) */
   VkDeviceSize positions_size;
   VkDeviceSize tangents_size;
   VkDeviceSize previous_positions_size;  /* also the size of previous_previous_positions */

@@ -53,6 +53,8 @@ struct TvkInstance_T {
   VkDescriptorSet set = VK_NULL_HANDLE;
 
   std::array<double, 3> sim_origin{};
+  std::vector<std::byte> last_step_inputs;  // what the last step run saw (simulate.cpp: a frame is still or not)
+  uint64_t still_frames = 0;                // still frames in a row
   uint64_t steps = 0, frames = 0;
   uint32_t steps_last_frame = 0;
   tressvk::HazardTracker hazards;

@@ -209,7 +209,24 @@ struct InstanceWork {
   uint32_t skin_stride = 0;  // vec4 per substep
   std::vector<PassUse> passes;
   std::array<uint32_t, 3> dynamic_offsets{};
+  float rest_move = 0.0f;  // the push constant: the sleeping threshold in a still frame, else 0
 };
+
+// What a step of this frame sees besides the strands' own state: the group parameters, the step's parameters (its
+// index within the frame aside) and its skinning rows, as the GPU gets them. A frame is still (layout.glsl, "Sleeping
+// strands") when every step's bytes equal those of the last step the instance ran: no input can move a strand then.
+std::vector<std::byte> step_inputs(const std::vector<sim::GroupParams>& groups, const model::GpuFrame& gpu,
+                                   uint32_t step) {
+  sim::StepParams sp = gpu.steps[step];
+  sp.flags[1] = 0;
+  const size_t group_bytes = groups.size() * sizeof(sim::GroupParams);
+  const size_t skin_bytes = size_t{gpu.skin_stride} * sizeof(sim::Vec4);
+  std::vector<std::byte> bytes(group_bytes + sizeof(sp) + skin_bytes);
+  if (group_bytes) std::memcpy(bytes.data(), groups.data(), group_bytes);
+  std::memcpy(bytes.data() + group_bytes, &sp, sizeof(sp));
+  if (skin_bytes) std::memcpy(bytes.data() + group_bytes + sizeof(sp), gpu.skin.data() + size_t{step} * gpu.skin_stride, skin_bytes);
+  return bytes;
+}
 
 // The passes a frame of this instance records (sim/fused.hpp): the compliant model's lane kernel, or on the process's
 // simulation path (TRESSVK_SIM_PATH) the run kernel, the one-thread kernel (its shared-memory variant only where the
@@ -256,12 +273,19 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   const VkDeviceSize base = VkDeviceSize{slice} * inst.slice_size;
   auto* ring = static_cast<std::byte*>(inst.ring.mapped);
   const double h = inst.planner->step_length();
+  std::vector<sim::GroupParams> groups(inst.params.size());
   for (size_t g = 0; g < inst.params.size(); ++g) {
     const model::GroupStep step = model::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation,
                                                             inst.asset->rest.median_length);
-    const sim::GroupParams gp =
-        model::compliant_model_from_environment() ? model::to_gpu_compliant(step, h) : model::to_gpu(step);
-    std::memcpy(ring + base + inst.groups_offset + g * sizeof(gp), &gp, sizeof(gp));
+    groups[g] = model::compliant_model_from_environment() ? model::to_gpu_compliant(step, h) : model::to_gpu(step);
+    std::memcpy(ring + base + inst.groups_offset + g * sizeof(sim::GroupParams), &groups[g], sizeof(sim::GroupParams));
+  }
+  // Still or not: every step of this frame against the last step run (a frame without steps leaves that as it was).
+  bool still = work.steps > 0 && !inst.last_step_inputs.empty();
+  for (uint32_t s = 0; s < work.steps; ++s) {
+    std::vector<std::byte> bytes = step_inputs(groups, gpu, s);
+    still = still && bytes == inst.last_step_inputs;
+    if (s + 1 == work.steps) inst.last_step_inputs = std::move(bytes);
   }
   if (!gpu.steps.empty())
     std::memcpy(ring + base + inst.steps_offset, gpu.steps.data(), gpu.steps.size() * sizeof(sim::StepParams));
@@ -275,6 +299,14 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide,
                                                  inst.asset->rest.pinned_tip_strands > 0);
   work.passes = passes_for_path(ctx, inst, terms);
+  // The fused frame kernels sleep; one pass per dispatch never does.
+  const bool fused = work.passes.size() == 1 && (work.passes.front().info->id == PassId::kFrame);
+  // Still frames in a row: one in kMeasureEvery measures the strands' motion (layout.glsl), the others pass the
+  // threshold negated.
+  constexpr uint64_t kMeasureEvery = 4;
+  inst.still_frames = still ? inst.still_frames + 1 : 0;
+  const float threshold = static_cast<float>(inst.settings.sleep_below * inst.asset->rest.median_length);
+  work.rest_move = !still || !fused ? 0.0f : inst.still_frames % kMeasureEvery == 1 ? threshold : -threshold;
   return TVK_SUCCESS;
 }
 
@@ -415,7 +447,8 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
                                      w->dynamic_offsets.data());
       const bool fused = u->info->id == PassId::kFrame;  // all substeps from step 0 in one dispatch
       const uint32_t s = fused ? 0 : per_frame ? w->steps - 1 : step;
-      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, 0, w->steps, w->skin_stride};
+      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, 0, w->steps, w->skin_stride,
+                                  w->rest_move};
       ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
       const uint32_t groups = sim::is_frame_lanes(u->info)
                                   ? sim::frame_lanes_groups(u->info, rest.guide_count, rest.vertices_per_strand,

@@ -1,0 +1,140 @@
+// Sleeping strands (shaders/sim/layout.glsl, "Sleeping strands"; TvkSimSettings::sleep_below): a groom at rest under a
+// still head stops being simulated, keeps its state, and wakes when any input changes. Run by every frame kernel's
+// ctest entry (the run kernel by default, runs of 8, the one-thread kernel, both lane-kernel models).
+#include "sim_harness.hpp"
+
+#include <tressvk/baker/procedural.hpp>
+#include <tressvk/reference/metrics.hpp>
+#include <tressvk/reference/scenes.hpp>
+
+#include <catch2/catch_test_macros.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace tressvk;
+
+namespace {
+
+constexpr float kQuietFrames = 3.0f;  // layout.glsl's kQuietFrames (tressvk.h: TvkInstanceBuffers::anchors)
+
+size_t asleep(const test::GpuState& s) {
+  return static_cast<size_t>(
+      std::count_if(s.anchors.begin(), s.anchors.end(), [](const auto& a) { return a[3] >= kQuietFrames; }));
+}
+
+asset::HairAsset sleep_groom(uint32_t vertices_per_strand) {
+  baker::BuiltinGroomOptions options;
+  options.guide_count = 16;
+  options.follow_per_guide = 1;
+  options.vertices_per_strand = vertices_per_strand;
+  return baker::make_builtin_groom("straight", options);
+}
+
+// Settles the groom under a still head (the `settle` scene) until every guide sleeps, then checks what sleeping
+// means: a sleeping strand is not simulated (a vertex moved by hand stays where it was put), the state it keeps is
+// where the reference would have let it settle, and the first frame that is not still wakes every guide.
+void check_sleep(uint32_t vertices_per_strand) {
+  const asset::HairAsset hair = sleep_groom(vertices_per_strand);
+  const std::vector<TvkSimParams> params(std::max<size_t>(1, hair.groups.size()), TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  TvkSimSettings awake_settings = settings;
+  awake_settings.sleep_below = 0.0f;
+  test::PluginContext ctx = test::create_plugin_context();
+  test::AssetHandle a(test::load_asset(ctx.get(), hair));
+  // Two instances of the groom, one that may sleep and one that never does: until the first sleeps they compute the
+  // same bits (the count does not touch the physics); after, the second is what sleeping left out.
+  test::GpuInstance gpu(ctx.get(), a.get(), params, settings);
+  test::GpuInstance awake(ctx.get(), a.get(), params, awake_settings);
+  const reference::Simulator ref(hair, params, settings);
+  const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
+  const double median = ref.median_strand_length();
+  const uint32_t n = hair.vertices_per_strand;
+  const size_t guide_vertices = size_t{hair.guide_count()} * n;
+  const auto guides = [&](const std::vector<test::Point>& p) {
+    return std::span<const test::Point>(p.data(), guide_vertices);
+  };
+  uint32_t f = 0;
+  const auto both = [&](const TvkSimFrame& frame) {
+    test::run_frame_batched(ctx.get(), {&gpu, &awake}, {frame, frame});
+    ++f;
+  };
+  // The straight groom falls from horizontal and swings to rest: at the default damping its motion decays by about
+  // e^-4.8 a second, so a swing of the strand's length comes down to 1e-6 of it per step in a few seconds.
+  constexpr uint32_t kMaxFrames = 900;
+  while (f < kMaxFrames && (f == 0 || asleep(gpu.state()) < hair.guide_count()))
+    both(reference::scene_frame("settle", f, geometry));
+  INFO("frames until every guide slept: " << f);
+  REQUIRE(asleep(gpu.state()) == hair.guide_count());
+  CHECK(asleep(awake.state()) == 0);
+
+  // What sleeping leaves out: 2 s more of the same still frames.
+  const test::GpuState slept = gpu.state();
+  for (uint32_t k = 0; k < 120; ++k) both(reference::scene_frame("settle", f, geometry));
+  const auto frozen = reference::position_error(guides(slept.pos), guides(gpu.state().pos), median);
+  const auto missed = reference::position_error(guides(gpu.state().pos), guides(awake.state().pos), median);
+  INFO("motion of the sleeping groom in 2 s: " << frozen.max_rel << "; of the one awake: " << missed.max_rel);
+  CHECK(frozen.max_rel == 0.0);  // nothing was simulated: not one bit moved
+  // No vertex moved more than 1e-6 of the median strand per step in 3 measured frames. What was left to move decays
+  // with the damping (0.98 of the velocity kept per step at the default: up to 50x a step's move) and the shape
+  // constraints' slowest modes settle slower still (measured: follow-the-leader 3.4e-5 at 32 vertices and 2.5e-6 at
+  // 8, the compliant model 5.6e-5, and 1.1e-4 with a threshold relative to each strand's own length). The bar, 2e-4 of
+  // the strand (60 um on a 30 cm strand), is far under what a person sees and under the model's own error
+  // at the default settings (docs/accuracy.md: 1e-2 and more against the converged reference). A threshold of 1e-7
+  // would leave 10x less but sits on float32's rounding of a settled strand (3e-8 never slept at 32 vertices, nor
+  // did the compliant model's 8-vertex strands all at 1e-7 in 15 s). Measured: see INFO.
+  CHECK(missed.max_rel <= 2e-4);
+
+  // Not simulated: guide 2's tip, moved by hand half its segment's length further out, stays there through still
+  // frames, its segment stretched by half.
+  const size_t tip = size_t{2} * n + n - 1;
+  const test::Point before = gpu.state().pos[tip];
+  const test::Point parent = gpu.state().pos[tip - 1];
+  test::Point poked{};
+  for (int c = 0; c < 3; ++c) poked[c] = before[c] + 0.5 * (before[c] - parent[c]);
+  const std::array<float, 4>& anchor = gpu.state().anchors[2];
+  gpu.poke_position(tip, {static_cast<float>(poked[0] - anchor[0]), static_cast<float>(poked[1] - anchor[1]),
+                          static_cast<float>(poked[2] - anchor[2]), 1.0f});
+  both(reference::scene_frame("settle", f, geometry));
+  CHECK(asleep(gpu.state()) == hair.guide_count());
+  const auto stretched = reference::stretch(guides(gpu.state().pos), ref.rest());
+  INFO("worst stretch while asleep: " << stretched.max);
+  CHECK(std::abs(stretched.max - 0.5) < 1e-3);
+
+  // Any change of input wakes every guide: here the head moves by 0.1 mm, and the length pass pulls the segment back
+  // (to within the 5 % that the default settings keep in every scene; follow-the-leader restores it exactly, the
+  // compliant model to 1e-3 in that frame).
+  TvkSimFrame nudged = reference::scene_frame("settle", f, geometry);
+  nudged.transform.translation[0] += 1e-4;
+  both(nudged);
+  CHECK(asleep(gpu.state()) == 0);
+  for (const auto& an : gpu.state().anchors) CHECK(an[3] == 0.0f);
+  const auto st = reference::stretch(guides(gpu.state().pos), ref.rest());
+  INFO("worst stretch after waking: " << st.max);
+  CHECK(st.max <= 0.05);
+}
+
+}  // namespace
+
+TEST_CASE("a still groom at rest sleeps and wakes when an input changes", "[plugin][simulation]") {
+  check_sleep(32);
+}
+
+// On the lane kernels' ctest entries: lavapipe's 8-lane subgroups run their subgroup variant.
+TEST_CASE("a still groom of 8-vertex strands at rest sleeps and wakes when an input changes", "[plugin][simulation]") {
+  check_sleep(8);
+}
+
+TEST_CASE("with sleep_below 0 no guide ever sleeps", "[plugin][simulation]") {
+  const asset::HairAsset hair = sleep_groom(8);
+  const std::vector<TvkSimParams> params(1, TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  settings.sleep_below = 0.0f;
+  test::PluginContext ctx = test::create_plugin_context();
+  test::AssetHandle a(test::load_asset(ctx.get(), hair));
+  test::GpuInstance gpu(ctx.get(), a.get(), params, settings);
+  const reference::SceneGeometry geometry = reference::scene_geometry(reference::Simulator(hair, params, settings).rest());
+  for (uint32_t f = 0; f < 600; ++f) gpu.run_frame(reference::scene_frame("settle", f, geometry));
+  CHECK(asleep(gpu.state()) == 0);
+  for (const auto& an : gpu.state().anchors) CHECK(an[3] == 0.0f);
+}
