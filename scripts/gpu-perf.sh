@@ -62,6 +62,30 @@ if [ "${MODELS:-0}" = 1 ]; then
   exit 0
 fi
 
+# SLEEP=1: only the sleeping table (docs/simulation.md, "Sleeping"): each groom moving (`shake`) and at rest under a
+# still head (`settle`, 900 warm-up frames to come to rest) with the default sleep_below and with sleeping off, at
+# 240 Hz on the default path; the JSON's guides_asleep counts the sleeping guides after the timed frames. Then stop.
+if [ "${SLEEP:-0}" = 1 ]; then
+  Z="--step-rate 240 --frames 300 --warmup 900 --error-frames 2"
+  {
+    echo "| groom | guide vertices | step rate | path (kernel) | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+    for g in ratboy straight1M curly1M curly4M; do
+      case $g in
+        ratboy) [ -f "$MOHAWK" ] || continue; G=(--asset "$MOHAWK") ;;
+        straight1M) G=(--builtin straight --guides 32768) ;;
+        curly1M) G=(--builtin curly --guides 32768) ;;
+        curly4M) G=(--builtin curly --guides 131072) ;;
+      esac
+      perf "sleep-$g-shake" default "${G[@]}" --scene shake $Z
+      perf "sleep-$g-settle" default "${G[@]}" --scene settle $Z
+      perf "sleep-$g-settle-off" default "${G[@]}" --scene settle --sleep-below 0 $Z
+    done
+  } | tee "$OUT/sleep.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
 # RUNS=1: only the run kernel's crossover table (runs of 4, of 8 and the one-thread kernel on curly 4,096, 8,192 and
 # 16,384 x 32, and the default on Ratboy, at 240 and 60 Hz; docs/simulation.md, "The run kernel"), then stop.
 if [ "${RUNS:-0}" = 1 ]; then
