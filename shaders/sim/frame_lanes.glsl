@@ -58,6 +58,7 @@ const uint kLowerSplit = ((kSlots + 31u) / 32u) * 32u;
 const uint kLowerFirst = kLowerSplit + kSlots <= WORKGROUP_SIZE ? kLowerSplit : kSlots;
 shared float s_blk[1u + kConservativeOn * (kSlots * kSlotFloats - 1u)];
 shared uint s_iters;
+shared uint s_awake;  // still frames: whether any strand of the workgroup is awake
 uint tvk_iterations = 0u;  // the most local-shape iterations of the workgroup's strands (conservative shape only)
 uint tvk_slot_strand = 0u;
 // False for the lanes of a strand past the last guide (the subgroup variant's last workgroup): where the conservative
@@ -247,6 +248,13 @@ void main() {
     if (kConservativeOn == 0u) return;
     tvk_active = false;
   }
+  if (kConservativeOn != 0u && frame_still()) {  // uniform over the dispatch: moving frames skip these barriers
+    if (gl_LocalInvocationIndex == 0u) s_awake = 0u;
+    barrier();
+    if (tvk_active) atomicOr(s_awake, 1u);
+    barrier();
+    if (s_awake == 0u) return;  // every strand of the workgroup asleep or padding: nothing read
+  }
   uint b = strand_base(g);
   bool vert = v < N;
   uint i = b + v * TVK_BLOCK;
@@ -288,8 +296,9 @@ void main() {
     if (TVK_HAS(TVK_FEATURE_LOCAL_SHAPE)) local_shape_lanes(g, v, lr, gp);
     length_lanes(g, b, v, lr, gp, s + 1u == pc.step_count);
   }
-  // Every lane of the strand reduces (the exchange's rule); pc.rest_move is uniform.
-  float moved2 = frame_measures() ? lanes_max(v, vert ? frame_move2(L_pos, i) : 0.0) : 0.0;
+  // Every lane of the strand reduces (the exchange's rule): frame_measures() is uniform over the dispatch.
+  float moved2 = 0.0;
+  if (frame_measures()) moved2 = lanes_max(v, vert ? frame_move2(L_pos, i) : 0.0);
   if (vert && tvk_active) {
     pos[i] = L_pos;
     prev[i] = L_prev;
