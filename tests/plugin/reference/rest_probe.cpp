@@ -1,0 +1,78 @@
+// Does the double reference come to rest? A groom (built-in, or a baked .tvkhair) settles under a still head for
+// `frames` frames at the default settings; then prints, per guide, the largest move of a vertex per step over the
+// next frame relative to the median strand length (quantiles), and the guides that move most with their length,
+// segments and group. The GPU's sleeping (TvkSimSettings::sleep_below) needs the model at rest to be still; a guide
+// the double model keeps moving is the model's, not float32's. Diagnostic, not a test:
+//   tressvk_rest_probe curly 64 1500          tressvk_rest_probe path/to/groom.tvkhair 0 1500
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "helpers.hpp"
+
+#include <tressvk/asset_io.hpp>
+
+int main(int argc, char** argv) {
+  using namespace tvk_test;
+  const std::string name = argc > 1 ? argv[1] : "curly";
+  const uint32_t guides = argc > 2 ? static_cast<uint32_t>(std::atoi(argv[2])) : 64;
+  const uint32_t frames = argc > 3 ? static_cast<uint32_t>(std::atoi(argv[3])) : 1500;
+  const uint32_t iterations = argc > 4 ? static_cast<uint32_t>(std::atoi(argv[4])) : 2;
+  tressvk::asset::HairAsset a;
+  if (name.find(".tvkhair") != std::string::npos) {
+    tressvk::asset::ReadResult r = tressvk::asset::read_file(name);
+    if (!r.ok()) {
+      std::fprintf(stderr, "%s: %s\n", name.c_str(), r.error.c_str());
+      return 1;
+    }
+    a = std::move(r.asset);
+  } else {
+    a = groom(name, guides, 0);
+  }
+  TvkSimParams p = default_params();
+  p.local_iterations = iterations;
+  std::vector<TvkSimParams> params(std::max<size_t>(1, a.groups.size()), p);
+  Simulator sim(a, params, default_settings());
+  const SceneGeometry geo = scene_geometry(sim.rest());
+  for (uint32_t f = 0; f < frames; ++f) sim.advance(scene_frame("settle", f, geo));
+  const std::vector<Vec3> before(sim.positions().begin(), sim.positions().end());
+  const FramePlan plan = sim.advance(scene_frame("settle", frames, geo));
+  const uint32_t n = sim.rest().vertices_per_strand, g_count = sim.rest().guide_count;
+  const double median = sim.rest().median_length;
+  const double steps = static_cast<double>(plan.steps.size());
+  struct Row { double move; uint32_t g; };
+  std::vector<Row> rows;
+  for (uint32_t g = 0; g < g_count; ++g) {
+    double m = 0;
+    for (uint32_t v = 0; v < n; ++v) m = std::max(m, length(sim.positions()[g * n + v] - before[g * n + v]));
+    rows.push_back({m / steps / median, g});
+  }
+  std::sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) { return x.move < y.move; });
+  std::printf("%s: %u guides x %u vertices, %u local iterations, after %u frames (%.1f s) of settle: move per step / "
+              "median strand length\n", name.c_str(), g_count, n, iterations, frames, frames / 60.0);
+  for (double q : {0.0, 0.5, 0.9, 0.99, 0.999, 1.0})
+    std::printf("  q%-5g %.3g\n", q, rows[static_cast<size_t>(q * static_cast<double>(rows.size() - 1))].move);
+  size_t above = 0;
+  for (const Row& r : rows) above += r.move > 1e-6 ? 1 : 0;
+  std::printf("  guides above 1e-6 (the default sleep_below): %zu\n", above);
+  // Oscillating or drifting: the same guides' largest net move over the next second (60 frames).
+  const std::vector<Vec3> at(sim.positions().begin(), sim.positions().end());
+  for (uint32_t f = 1; f <= 60; ++f) sim.advance(scene_frame("settle", frames + f, geo));
+  const auto net = [&](uint32_t g) {
+    double m = 0;
+    for (uint32_t v = 0; v < n; ++v) m = std::max(m, length(sim.positions()[g * n + v] - at[g * n + v]));
+    return m / median;
+  };
+  for (size_t k = 0; k < std::min<size_t>(8, rows.size()); ++k) {
+    const Row& r = rows[rows.size() - 1 - k];
+    double shortest = 1e30;
+    for (uint32_t v = 0; v + 1 < n; ++v) shortest = std::min(shortest, sim.rest().rest_length[r.g * n + v]);
+    std::printf("  guide %u: move %.3g per step, net over the next second %.3g; length %.4g m (%.2f x median), shortest "
+                "segment %.3g m, group %u\n", r.g, r.move, net(r.g), sim.rest().strand_length[r.g],
+                sim.rest().strand_length[r.g] / median, shortest, sim.rest().group[r.g]);
+  }
+  return 0;
+}

@@ -1,0 +1,80 @@
+// A groom under gravity with a still head comes to rest (docs/accuracy.md, "At rest"): after 25 s of `settle` at the
+// default settings no vertex moves more than 1e-9 of the median strand length per step. The GPU's sleeping
+// (TvkSimSettings::sleep_below, 1e-6 per step by default) rests on it: a groom the model keeps moving never sleeps,
+// and a flicker at rest is what issue 10 asks the model not to have. tressvk_rest_probe prints the same per guide.
+#include <catch2/catch_test_macros.hpp>
+
+#include <algorithm>
+#include <optional>
+
+#include "helpers.hpp"
+
+using namespace tvk_test;
+
+namespace {
+
+// The largest move of a guide vertex per step over one frame after `frames` frames of settle, / median length.
+double motion_at_rest(const tressvk::asset::HairAsset& a, uint32_t local_iterations, std::optional<Simulator::SimModel> model,
+                      uint32_t frames = 1500) {
+  TvkSimParams p = default_params();
+  p.local_iterations = local_iterations;
+  Simulator sim = make_sim(a, p);
+  if (model) sim.set_model(*model);
+  const SceneGeometry geo = scene_geometry(sim.rest());
+  for (uint32_t f = 0; f < frames; ++f) sim.advance(scene_frame("settle", f, geo));
+  const std::vector<Vec3> before(sim.positions().begin(), sim.positions().end());
+  const FramePlan plan = sim.advance(scene_frame("settle", frames, geo));
+  const size_t guide_vertices = size_t{sim.rest().guide_count} * sim.rest().vertices_per_strand;
+  double m = 0;
+  for (size_t i = 0; i < guide_vertices; ++i) m = std::max(m, length(sim.positions()[i] - before[i]));
+  return m / static_cast<double>(plan.steps.size()) / sim.rest().median_length;
+}
+
+constexpr double kAtRest = 1e-9;  // measured 1e-16..1e-15 where the model rests; the limit cycles below are 1e-3..1e-1
+
+}  // namespace
+
+TEST_CASE("rest: straight and 128-vertex grooms come to rest under gravity in every model", "[reference][rest]") {
+  for (const char* name : {"straight", "long128"}) {
+    const auto a = groom(name, 8);
+    for (Simulator::SimModel m : {Simulator::SimModel::kFollowTheLeader, Simulator::SimModel::kCompliant, Simulator::SimModel::kConservative}) {
+      const double motion = motion_at_rest(a, 2, m);
+      INFO(name << ", model " << static_cast<int>(m) << ": " << motion << " of the median length per step");
+      CHECK(motion <= kAtRest);
+    }
+  }
+}
+
+TEST_CASE("rest: the curly groom comes to rest with 3 or more local iterations (follow-the-leader)", "[reference][rest]") {
+  const auto a = groom("curly", 8);
+  for (uint32_t it : {3u, 4u}) {
+    const double motion = motion_at_rest(a, it, Simulator::SimModel::kFollowTheLeader);
+    INFO(it << " local iterations: " << motion << " of the median length per step");
+    CHECK(motion <= kAtRest);
+  }
+}
+
+TEST_CASE("rest: the curly groom comes to rest under the conservative local shape", "[reference][rest]") {
+  const double motion = motion_at_rest(groom("curly", 8), 2, Simulator::SimModel::kConservative);
+  INFO(motion << " of the median length per step");
+  CHECK(motion <= kAtRest);
+}
+
+// Known to fail (docs/accuracy.md, "At rest"): at the default 2 local iterations (and at 1) follow-the-leader's
+// curls keep a limit cycle at rest (64 guides: 36 of them, up to 4.3e-3 of the strand per step, 0.045 net over a
+// second), whatever the length pass's velocity correction (0 .. 1); 3 iterations and more come to rest.
+TEST_CASE("rest: the curly groom comes to rest at the default 2 local iterations (follow-the-leader)",
+          "[reference][rest][!shouldfail]") {
+  const double motion = motion_at_rest(groom("curly", 8), 2, Simulator::SimModel::kFollowTheLeader);
+  INFO(motion << " of the median length per step");
+  CHECK(motion <= kAtRest);
+}
+
+// Known to fail: the compliant model's curls start moving by themselves under gravity and settle into 0.09 of the
+// strand per step (about 10 m/s) within 5 s, at 2, 4 and 8 local iterations; the conservative local shape, which
+// solves the same constraints with their full gradient, rests (above).
+TEST_CASE("rest: the curly groom comes to rest (compliant model)", "[reference][rest][!shouldfail]") {
+  const double motion = motion_at_rest(groom("curly", 8), 2, Simulator::SimModel::kCompliant);
+  INFO(motion << " of the median length per step");
+  CHECK(motion <= kAtRest);
+}
