@@ -24,7 +24,7 @@ void add_simulation_options(CLI::App& subcommand, TvkSimParams& params, TvkSimSe
   subcommand.add_option("--local-iterations", params.local_iterations)->capture_default_str();
   subcommand.add_option("--length-iterations", params.length_iterations)->capture_default_str();
   subcommand.add_option("--sleep-below", settings.sleep_below,
-                        "a still groom's guides sleep below this move per step (fraction of the strand; 0 = never)")
+                        "a still groom's guides sleep below this move per step (fraction of the median strand length; 0 = never)")
       ->capture_default_str();
 }
 
