@@ -3,7 +3,8 @@
 // next frame relative to the median strand length (quantiles), and the guides that move most with their length,
 // segments and group. The GPU's sleeping (TvkSimSettings::sleep_below) needs the model at rest to be still; a guide
 // the double model keeps moving is the model's, not float32's. Diagnostic, not a test:
-//   tressvk_rest_probe curly 64 1500          tressvk_rest_probe path/to/groom.tvkhair 0 1500
+//   tressvk_rest_probe curly 64 1500 [ITERATIONS [LOCAL_STIFFNESS [DAMPING]]]
+//   tressvk_rest_probe path/to/groom.tvkhair 0 1500
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,8 @@ int main(int argc, char** argv) {
   const uint32_t guides = argc > 2 ? static_cast<uint32_t>(std::atoi(argv[2])) : 64;
   const uint32_t frames = argc > 3 ? static_cast<uint32_t>(std::atoi(argv[3])) : 1500;
   const uint32_t iterations = argc > 4 ? static_cast<uint32_t>(std::atoi(argv[4])) : 2;
+  const float local_stiffness = argc > 5 ? static_cast<float>(std::atof(argv[5])) : -1.0f;  // < 0: the default
+  const float damping = argc > 6 ? static_cast<float>(std::atof(argv[6])) : -1.0f;
   tressvk::asset::HairAsset a;
   if (name.find(".tvkhair") != std::string::npos) {
     tressvk::asset::ReadResult r = tressvk::asset::read_file(name);
@@ -34,6 +37,8 @@ int main(int argc, char** argv) {
   }
   TvkSimParams p = default_params();
   p.local_iterations = iterations;
+  if (local_stiffness >= 0.0f) p.local_stiffness = local_stiffness;
+  if (damping >= 0.0f) p.damping = damping;
   std::vector<TvkSimParams> params(std::max<size_t>(1, a.groups.size()), p);
   Simulator sim(a, params, default_settings());
   const SceneGeometry geo = scene_geometry(sim.rest());
@@ -51,8 +56,9 @@ int main(int argc, char** argv) {
     rows.push_back({m / steps / median, g});
   }
   std::sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) { return x.move < y.move; });
-  std::printf("%s: %u guides x %u vertices, %u local iterations, after %u frames (%.1f s) of settle: move per step / "
-              "median strand length\n", name.c_str(), g_count, n, iterations, frames, frames / 60.0);
+  std::printf("%s: %u guides x %u vertices, %u local iterations (stiffness %g, damping %g), after %u frames (%.1f s) "
+              "of settle: move per step / median strand length\n", name.c_str(), g_count, n, iterations,
+              static_cast<double>(p.local_stiffness), static_cast<double>(p.damping), frames, frames / 60.0);
   for (double q : {0.0, 0.5, 0.9, 0.99, 0.999, 1.0})
     std::printf("  q%-5g %.3g\n", q, rows[static_cast<size_t>(q * static_cast<double>(rows.size() - 1))].move);
   size_t above = 0;
