@@ -138,3 +138,29 @@ TEST_CASE("with sleep_below 0 no guide ever sleeps", "[plugin][simulation]") {
   CHECK(asleep(gpu.state()) == 0);
   for (const auto& an : gpu.state().anchors) CHECK(an[3] == 0.0f);
 }
+
+// What is still: a steady wind is an input like any other (the groom settles in it and sleeps), a gusting one changes
+// every step (its strength follows the time), so no frame is still and no guide sleeps.
+TEST_CASE("a groom sleeps in a steady wind and never in a gusting one", "[plugin][simulation]") {
+  const asset::HairAsset hair = sleep_groom(8);
+  const std::vector<TvkSimParams> params(1, TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
+  const TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  test::PluginContext ctx = test::create_plugin_context();
+  test::AssetHandle a(test::load_asset(ctx.get(), hair));
+  test::GpuInstance steady(ctx.get(), a.get(), params, settings);
+  test::GpuInstance gusting(ctx.get(), a.get(), params, settings);
+  const reference::SceneGeometry geometry = reference::scene_geometry(reference::Simulator(hair, params, settings).rest());
+  uint32_t f = 0;
+  for (; f < 900 && (f == 0 || asleep(steady.state()) < hair.guide_count()); ++f) {
+    TvkSimFrame calm = reference::scene_frame("settle", f, geometry);
+    calm.wind.strength = 3.0f;
+    calm.wind.gust_amplitude = 0.0f;
+    TvkSimFrame gusty = calm;
+    gusty.wind.gust_amplitude = 0.5f;
+    test::run_frame_batched(ctx.get(), {&steady, &gusting}, {calm, gusty});
+  }
+  INFO("frames until every guide slept in the steady wind: " << f);
+  CHECK(asleep(steady.state()) == hair.guide_count());
+  CHECK(asleep(gusting.state()) == 0);
+  for (const auto& an : gusting.state().anchors) CHECK(an[3] == 0.0f);
+}
