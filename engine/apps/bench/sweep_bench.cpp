@@ -133,6 +133,10 @@ void add_sweep_command(CLI::App& app, SweepCommand& cmd) {
                 "milliseconds of warm-up after which a configuration is timed although its frame time has not settled")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  s->add_option("--sleep-below", cmd.sleep_below,
+                 "guides of a still groom sleep below this move per step (fraction of the median strand length); 0, "
+                 "the default here, times the model itself")
+      ->capture_default_str()->check(CLI::Range(0.0, 1e-3));
   s->add_option("--in-flight", cmd.frames_in_flight, "frames in flight while timing")->capture_default_str()->check(CLI::Range(1, 8));
   s->add_option("--reference-rate", cmd.reference_rate, "step rate of the converged reference, Hz")
       ->capture_default_str()
@@ -267,6 +271,7 @@ int execute_sweep_command(const SweepCommand& given) {
       p.length_iterations = c.length;
       s = cmd.settings;
       s.time.step_rate = static_cast<float>(c.rate);
+      s.sleep_below = cmd.sleep_below;
     };
     // 1. Accuracy: the tracked guides frame by frame, read back after each frame.
     for (const Config& c : configs) {
@@ -296,6 +301,7 @@ int execute_sweep_command(const SweepCommand& given) {
             {"guides", grooms[c.n].guide_count()},
             {"error_guides", error_guides},
             {"is_default", c == def ? 1 : 0},
+            {"sleep_below", cmd.sleep_below},
             {"model_error_rms", model_error.rms_rel},
             {"model_error_max", model_error.max_rel},
             {"step_error_max", tr.step_error_max_rel},

@@ -31,6 +31,9 @@ struct SweepCommand {
   double warmup_ms = 1000;      // GPU work before the first timed configuration (its clock ramps up)
   double warmup_ms_each = 250;  // and at least this much before each configuration (after the gap between two)
   double warmup_ms_max = 5000;  // then until the frame time settles (frame_timing.hpp, WarmUp), at most this long
+  // The fronts compare what the model's settings cost, so by default no guide sleeps (TvkSimSettings::sleep_below):
+  // a settled groom's rows would otherwise time the sleeping kernel, the same for every setting.
+  float sleep_below = 0.0f;
   double reference_rate = 3840;
   uint32_t reference_local_iterations = 8, reference_length_iterations = 4, reference_vertices = 128;
   uint32_t threads = 0;         // reference threads (0: one per scene, at most the hardware's)
