@@ -144,7 +144,7 @@ layout(push_constant) uniform PushConstants {   // 32 bytes
 // vertex still accelerates, is not rest. Measuring re-reads the frame's starting positions (frame_move2), so only one
 // still frame in kMeasureEvery measures (rest_move > 0; the others pass it negative and keep the count): a groom that
 // never comes to rest pays a quarter of that read, and a moving frame reads nothing more at all.
-const float kQuietFrames = 3.0;
+const float kQuietFrames = float(TVK_QUIET_FRAMES);
 bool frame_still() { return pc.rest_move != 0.0; }
 bool frame_measures() { return pc.rest_move > 0.0; }
 bool guide_asleep(float quiet) { return frame_still() && quiet >= kQuietFrames; }

@@ -16,7 +16,7 @@ using namespace tressvk;
 
 namespace {
 
-constexpr float kQuietFrames = 3.0f;  // layout.glsl's kQuietFrames (tressvk.h: TvkInstanceBuffers::anchors)
+constexpr float kQuietFrames = float(TVK_ASLEEP_QUIET_FRAMES);  // tressvk.h: TvkInstanceBuffers::anchors
 
 size_t asleep(const test::GpuState& s) {
   return static_cast<size_t>(

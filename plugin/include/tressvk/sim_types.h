@@ -24,6 +24,8 @@ extern "C" {
 #define TVK_MAX_CAPSULES 8          /* capsules per instance */
 #define TVK_MAX_STEPS_PER_FRAME 16  /* upper bound for TvkTimeSettings::max_steps_per_frame and max_steps_sustained */
 #define TVK_MAX_ITERATIONS 32       /* upper bound for local_iterations and length_iterations */
+#define TVK_ASLEEP_QUIET_FRAMES 3u  /* a guide sleeps (TvkSimSettings::sleep_below) while its anchor's w is at least
+                                       this (TvkInstanceBuffers::anchors) */
 
 /* Per strand group (an asset has one or more groups, e.g. "mohawk", "fur"). Stiffnesses are per-iteration
  * fractions as in TressFX, not moduli; with the fixed step (TvkTimeSettings) they do not depend on frame rate. */

@@ -221,7 +221,7 @@ typedef struct TvkInstanceBuffers {
   VkBuffer previous_previous_positions; /* vec4 per guide vertex, two steps back (for checking against the
                                         reference, tressvk::reference::Simulator::set_state) */
   VkBuffer anchors;                  /* vec4 per guide: xyz its anchor in simulation space; w the guide's count of
-                                        quiet still frames, >= 3 while it sleeps (TvkSimSettings::sleep_below) */
+                                        quiet still frames, >= TVK_ASLEEP_QUIET_FRAMES while it sleeps */
   VkDeviceSize positions_size;
   VkDeviceSize tangents_size;
   VkDeviceSize previous_positions_size;  /* also the size of previous_previous_positions */

@@ -110,7 +110,7 @@ void FramePlanner::set_settings(const TvkSimSettings& settings) {
           "time.max_steps_sustained must be within 0..TVK_MAX_STEPS_PER_FRAME");
   for (float g : settings.gravity) require(std::isfinite(g), "gravity is not finite");
   require(std::isfinite(settings.sleep_below) && settings.sleep_below >= 0.0f && settings.sleep_below <= 1e-3f,
-          "sleep_below must be within 0..1e-3 (a fraction of the strand's length)");
+          "sleep_below must be within 0..1e-3 (a fraction of the median strand length per step)");
   settings_ = settings;
   h_ = 1.0 / static_cast<double>(settings.time.step_rate);
 }

@@ -159,5 +159,6 @@ static_assert(vertex_index(37, 5, 9) == TVK_VERTEX_INDEX(37u, 5u, 9u));
 static_assert(kStepReset == TVK_STEP_RESET && kStepMoveState == TVK_STEP_MOVE_STATE &&
               kSkinVec4PerBone == TVK_SKIN_VEC4 && kMaxCapsules == TVK_STEP_MAX_CAPSULES &&
               kMaxCapsules == TVK_MAX_CAPSULES);
+static_assert(TVK_QUIET_FRAMES == TVK_ASLEEP_QUIET_FRAMES);
 
 }  // namespace tressvk::sim
