@@ -213,19 +213,36 @@ struct InstanceWork {
 };
 
 // What a step of this frame sees besides the strands' own state: the group parameters, the step's parameters (its
-// index within the frame aside) and its skinning rows, as the GPU gets them. A frame is still (layout.glsl, "Sleeping
-// strands") when every step's bytes equal those of the last step the instance ran: no input can move a strand then.
-std::vector<std::byte> step_inputs(const std::vector<sim::GroupParams>& groups, const model::GpuFrame& gpu,
-                                   uint32_t step) {
-  sim::StepParams sp = gpu.steps[step];
-  sp.flags[1] = 0;
+// index within the frame aside) and its skinning rows, as the GPU gets them, laid out one after the other. A frame
+// is still (layout.glsl, "Sleeping strands") when every step's bytes equal those of the last step the instance ran:
+// no input can move a strand then. Compared in place (a bone-skinned groom's rows are kilobytes a step), and the last
+// step's bytes kept in `last`, whose storage is reused from frame to frame.
+bool still_and_keep(const std::vector<sim::GroupParams>& groups, const model::GpuFrame& gpu, uint32_t steps,
+                    std::vector<std::byte>& last) {
   const size_t group_bytes = groups.size() * sizeof(sim::GroupParams);
   const size_t skin_bytes = size_t{gpu.skin_stride} * sizeof(sim::Vec4);
-  std::vector<std::byte> bytes(group_bytes + sizeof(sp) + skin_bytes);
-  if (group_bytes) std::memcpy(bytes.data(), groups.data(), group_bytes);
-  std::memcpy(bytes.data() + group_bytes, &sp, sizeof(sp));
-  if (skin_bytes) std::memcpy(bytes.data() + group_bytes + sizeof(sp), gpu.skin.data() + size_t{step} * gpu.skin_stride, skin_bytes);
-  return bytes;
+  const size_t total = group_bytes + sizeof(sim::StepParams) + skin_bytes;
+  const auto params_of = [&](uint32_t step) {
+    sim::StepParams sp = gpu.steps[step];
+    sp.flags[1] = 0;
+    return sp;
+  };
+  const auto skin_of = [&](uint32_t step) { return gpu.skin.data() + size_t{step} * gpu.skin_stride; };
+  bool still = steps > 0 && last.size() == total &&
+               (group_bytes == 0 || std::memcmp(last.data(), groups.data(), group_bytes) == 0);
+  for (uint32_t step = 0; still && step < steps; ++step) {
+    const sim::StepParams sp = params_of(step);
+    still = std::memcmp(last.data() + group_bytes, &sp, sizeof(sp)) == 0 &&
+            (skin_bytes == 0 || std::memcmp(last.data() + group_bytes + sizeof(sp), skin_of(step), skin_bytes) == 0);
+  }
+  if (steps > 0) {
+    const sim::StepParams sp = params_of(steps - 1);
+    last.resize(total);
+    if (group_bytes) std::memcpy(last.data(), groups.data(), group_bytes);
+    std::memcpy(last.data() + group_bytes, &sp, sizeof(sp));
+    if (skin_bytes) std::memcpy(last.data() + group_bytes + sizeof(sp), skin_of(steps - 1), skin_bytes);
+  }
+  return still;
 }
 
 // The passes a frame of this instance records (sim/fused.hpp): the compliant model's lane kernel, or on the process's
@@ -281,12 +298,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
     std::memcpy(ring + base + inst.groups_offset + g * sizeof(sim::GroupParams), &groups[g], sizeof(sim::GroupParams));
   }
   // Still or not: every step of this frame against the last step run (a frame without steps leaves that as it was).
-  bool still = work.steps > 0 && !inst.last_step_inputs.empty();
-  for (uint32_t s = 0; s < work.steps; ++s) {
-    std::vector<std::byte> bytes = step_inputs(groups, gpu, s);
-    still = still && bytes == inst.last_step_inputs;
-    if (s + 1 == work.steps) inst.last_step_inputs = std::move(bytes);
-  }
+  const bool still = still_and_keep(groups, gpu, work.steps, inst.last_step_inputs);
   if (!gpu.steps.empty())
     std::memcpy(ring + base + inst.steps_offset, gpu.steps.data(), gpu.steps.size() * sizeof(sim::StepParams));
   if (!gpu.skin.empty()) {
