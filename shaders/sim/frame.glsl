@@ -56,6 +56,7 @@ void main() {
   if (g >= pc.guide_count || pc.step_count == 0u) return;
   float quiet = frame_still() ? anchor[g].w : 0.0;  // a moving frame reads nothing more
   if (guide_asleep(quiet)) return;  // one thread per guide: no barrier or subgroup operation to keep
+  note_awake();
   frame_storage_begin(g);
   uint b = strand_base(g);
   for (uint v = 0u; v < N; ++v) {

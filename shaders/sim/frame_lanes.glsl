@@ -255,6 +255,7 @@ void main() {
     barrier();
     if (s_awake == 0u) return;  // every strand of the workgroup asleep or padding: nothing read
   }
+  if (v == 0u && tvk_active) note_awake();
   uint b = strand_base(g);
   bool vert = v < N;
   uint i = b + v * TVK_BLOCK;

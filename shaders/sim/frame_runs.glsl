@@ -300,6 +300,7 @@ void main() {
   if (g >= pc.guide_count || pc.step_count == 0u) return;  // uniform over the strand's lanes
   float quiet = frame_still() ? anchor[g].w : 0.0;  // a moving frame reads nothing more
   if (guide_asleep(quiet)) return;  // uniform over the strand's lanes, as padding
+  if (tvk_r == 0u) note_awake();
   uint b = strand_base(g);
   R_anchor = vec4(0.0);
   [[unroll]] for (uint k = 0u; k < RUN; ++k) {

@@ -164,3 +164,53 @@ TEST_CASE("a groom sleeps in a steady wind and never in a gusting one", "[plugin
   CHECK(asleep(gusting.state()) == 0);
   for (const auto& an : gusting.state().anchors) CHECK(an[3] == 0.0f);
 }
+
+// An instance whose every guide sleeps costs nothing: once a still frame ended with every guide asleep (its frame
+// slot's awake word, read frames_in_flight frames later), the plugin records no dispatch for it until a frame is not
+// still, and the state it keeps is the one it slept in. Beside it in the same batch, a twin that never sleeps keeps
+// its dispatch every frame.
+TEST_CASE("an instance whose every guide sleeps records no dispatch until a frame is not still", "[plugin][simulation]") {
+  const asset::HairAsset hair = sleep_groom(8);
+  const std::vector<TvkSimParams> params(1, TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  TvkSimSettings awake_settings = settings;
+  awake_settings.sleep_below = 0.0f;
+  test::PluginContext ctx = test::create_plugin_context();
+  test::AssetHandle a(test::load_asset(ctx.get(), hair));
+  test::GpuInstance gpu(ctx.get(), a.get(), params, settings);
+  test::GpuInstance awake(ctx.get(), a.get(), params, awake_settings);
+  const reference::SceneGeometry geometry = reference::scene_geometry(reference::Simulator(hair, params, settings).rest());
+  const auto recorded = [&] { return tressvk_get_recorded_passes(ctx.get(), nullptr, 0); };
+  const auto moved = [](const test::GpuState& x, const test::GpuState& y) {
+    return reference::position_error(std::span<const test::Point>(x.pos), std::span<const test::Point>(y.pos), 1.0).max_rel;
+  };
+  uint32_t f = 0;
+  while (f < 900 && (f == 0 || asleep(gpu.state()) < hair.guide_count()))
+    gpu.run_frame(reference::scene_frame("settle", f++, geometry));
+  INFO("frames until every guide slept: " << f);
+  REQUIRE(asleep(gpu.state()) == hair.guide_count());
+  // The next frame runs no guide; it and the one after are recorded (2 frames in flight: their slots' words, read as
+  // each slot comes round again, still answer for frames in which guides ran); after them nothing is recorded.
+  const test::GpuState slept = gpu.state();
+  for (uint32_t k = 0; k < 2; ++k) gpu.run_frame(reference::scene_frame("settle", f++, geometry));
+  for (uint32_t k = 0; k < 30; ++k) {
+    gpu.run_frame(reference::scene_frame("settle", f++, geometry));
+    CHECK(recorded() == 0);
+  }
+  CHECK(moved(slept, gpu.state()) == 0.0);
+  // In a batch with an instance that runs, only that one is dispatched (one frame kernel), and each keeps its own.
+  const TvkSimFrame still = reference::scene_frame("settle", f++, geometry);
+  test::run_frame_batched(ctx.get(), {&gpu, &awake}, {still, still});
+  CHECK(recorded() == 1);
+  CHECK(moved(slept, gpu.state()) == 0.0);
+  CHECK(asleep(awake.state()) == 0);
+  // The first frame that is not still runs and wakes every guide; the still frames after it run again until the
+  // guides have slept once more.
+  TvkSimFrame nudged = reference::scene_frame("settle", f++, geometry);
+  nudged.transform.translation[0] += 1e-4;
+  gpu.run_frame(nudged);
+  CHECK(recorded() == 1);
+  CHECK(asleep(gpu.state()) == 0);
+  gpu.run_frame(nudged);
+  CHECK(recorded() == 1);
+}

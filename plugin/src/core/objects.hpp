@@ -55,6 +55,11 @@ struct TvkInstance_T {
   std::array<double, 3> sim_origin{};
   std::vector<std::byte> last_step_inputs;  // what the last step run saw (simulate.cpp: a frame is still or not)
   uint64_t still_frames = 0;                // still frames in a row
+  // Idle instances (simulate.cpp): the first frame of the current still run, and per frame slot the frame (+ 1; 0:
+  // none) whose still dispatch the slot's awake word answers for; idle: every guide asleep and nothing moved since.
+  uint64_t still_run_first = 0;
+  std::vector<uint64_t> awake_probe;
+  bool idle = false;
   uint64_t steps = 0, frames = 0;
   uint32_t steps_last_frame = 0;
   tressvk::HazardTracker hazards;

@@ -47,6 +47,9 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
       tressvk::sim::padded_strands(uint64_t{rest.guide_count} * (1 + rest.follow_per_guide)) * rest.vertices_per_strand;
   const VkBufferUsageFlags state_usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  // A word per frame slot: strands reset after going non-finite in the slot's frames, and the slot's awake bit
+  // (layout.glsl; simulate.cpp, "Idle instances").
+  const VkDeviceSize counter_bytes = std::max<VkDeviceSize>(16, 4 * VkDeviceSize{ctx.frames_in_flight});
   TvkResult r = TVK_SUCCESS;
   if ((r = create_buffer(ctx, all_vertices * 16, state_usage, Memory::device, "positions", inst.positions)) ||
       (r = create_buffer(ctx, guide_vertices * 16, state_usage, Memory::device, "previous positions", inst.prev)) ||
@@ -55,10 +58,11 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
       (r = create_buffer(ctx, all_vertices * 16, state_usage, Memory::device, "tangents", inst.tangents)) ||
       (r = create_buffer(ctx, VkDeviceSize{rest.guide_count} * 16, state_usage, Memory::device, "strand anchors",
                          inst.anchors)) ||
-      (r = create_buffer(ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::host_readback, "counters",
+      (r = create_buffer(ctx, counter_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::host_readback, "counters",
                          inst.counters)))
     return r;
-  std::memset(inst.counters.mapped, 0, 16);
+  std::memset(inst.counters.mapped, 0, counter_bytes);
+  inst.awake_probe.assign(ctx.frames_in_flight, 0);
 
   // The ring: per frame in flight, [group params][step params x max steps][skin x max steps x bones].
   const VkDeviceSize align = std::max<VkDeviceSize>(ctx.device_properties.limits.minStorageBufferOffsetAlignment, 16);
@@ -267,7 +271,10 @@ TvkResult tressvk_get_instance_stats(TvkInstance instance, TvkInstanceStats* out
   out->frames = instance->frames;
   out->steps_last_frame = instance->steps_last_frame;
   vmaInvalidateAllocation(instance->ctx->allocator, instance->counters.allocation, 0, VK_WHOLE_SIZE);
-  std::memcpy(&out->nonfinite_strand_resets, instance->counters.mapped, sizeof(uint32_t));
+  // Each frame slot counts the resets of its own frames (simulate.cpp): the total is their sum.
+  const auto* words = static_cast<const uint32_t*>(instance->counters.mapped);
+  for (uint32_t slot = 0; slot < instance->ctx->frames_in_flight; ++slot)
+    out->nonfinite_strand_resets += words[slot] & ~tressvk::sim::kCounterAwakeBit;
   return TVK_SUCCESS;
 }
 

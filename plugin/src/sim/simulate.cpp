@@ -210,6 +210,8 @@ struct InstanceWork {
   std::vector<PassUse> passes;
   std::array<uint32_t, 3> dynamic_offsets{};
   float rest_move = 0.0f;  // the push constant: the sleeping threshold in a still frame, else 0
+  uint32_t counter_index = 0;  // the push constant: this frame slot's word (resets, awake bit)
+  bool idle = false;           // every guide asleep and the frame still: nothing to record
 };
 
 // What a step of this frame sees besides the strands' own state: the group parameters, the step's parameters (its
@@ -315,10 +317,37 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   const bool fused = work.passes.size() == 1 && (work.passes.front().info->id == PassId::kFrame);
   // Still frames in a row: one in kMeasureEvery measures the strands' motion (layout.glsl), the others pass the
   // threshold negated.
+  // A frame without steps runs nothing and changes nothing: it leaves the count (and idleness) as they were.
   constexpr uint64_t kMeasureEvery = 4;
+  if (work.steps == 0) return TVK_SUCCESS;
   inst.still_frames = still ? inst.still_frames + 1 : 0;
   const float threshold = static_cast<float>(inst.settings.sleep_below * inst.asset->rest.median_length);
   work.rest_move = !still || !fused ? 0.0f : inst.still_frames % kMeasureEvery == 1 ? threshold : -threshold;
+
+  // Idle instances. In a still frame every guide that runs (is not asleep as the frame starts) sets the frame slot's
+  // awake bit (layout.glsl, note_awake); the host clears the bit as it records that frame and reads it when it records
+  // the slot's next frame, which tressvk_new_frame's promise says the GPU has finished. A clear bit from a still
+  // frame of the current still run means that frame ran no guide, and since then no input changed: no later
+  // still frame would run one either (sleeping guides are padding), so none is recorded, barriers included, until a
+  // frame is not still.
+  work.counter_index = slice;
+  if (work.rest_move == 0.0f || threshold <= 0.0f) {
+    inst.idle = false;
+    inst.awake_probe[slice] = 0;
+    return TVK_SUCCESS;
+  }
+  if (inst.still_frames == 1) inst.still_run_first = ctx.frame;
+  auto* words = static_cast<uint32_t*>(inst.counters.mapped);
+  if (!inst.idle && inst.awake_probe[slice] != 0 && inst.awake_probe[slice] - 1 >= inst.still_run_first) {
+    vmaInvalidateAllocation(ctx.allocator, inst.counters.allocation, 0, VK_WHOLE_SIZE);
+    inst.idle = (words[work.counter_index] & sim::kCounterAwakeBit) == 0;
+  }
+  work.idle = inst.idle;
+  if (!work.idle) {
+    words[work.counter_index] &= ~sim::kCounterAwakeBit;
+    vmaFlushAllocation(ctx.allocator, inst.counters.allocation, 0, VK_WHOLE_SIZE);
+    inst.awake_probe[slice] = ctx.frame + 1;
+  }
   return TVK_SUCCESS;
 }
 
@@ -393,7 +422,10 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
   const VkPipelineStageFlags2 earlier_users = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
                                               VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
                                               VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+  // An idle instance records nothing, barriers included: it neither reads nor writes its buffers this frame, and what
+  // it wrote last is already visible through the barriers recorded after that.
   for (InstanceWork& w : work) {
+    if (w.idle) continue;
     for (uint32_t b : {sim::kBindingPositions, sim::kBindingPrevPositions, sim::kBindingPrevPrevPositions,
                        sim::kBindingTangents, sim::kBindingCounters, sim::kBindingAnchors})
       barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), earlier_users, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -414,6 +446,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
     std::vector<std::pair<InstanceWork*, const PassUse*>> users;
     for (InstanceWork& w : work) {
       if (per_frame ? w.steps == 0 : step >= w.steps) continue;
+      if (w.idle) continue;  // every guide asleep in a still frame: nothing to run
       for (const PassUse& u : w.passes)
         if (u.info->id == id) users.emplace_back(&w, &u);
     }
@@ -459,8 +492,8 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
                                      w->dynamic_offsets.data());
       const bool fused = u->info->id == PassId::kFrame;  // all substeps from step 0 in one dispatch
       const uint32_t s = fused ? 0 : per_frame ? w->steps - 1 : step;
-      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, 0, w->steps, w->skin_stride,
-                                  w->rest_move};
+      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, w->counter_index, w->steps,
+                                  w->skin_stride, w->rest_move};
       ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
       const uint32_t groups = sim::is_frame_lanes(u->info)
                                   ? sim::frame_lanes_groups(u->info, rest.guide_count, rest.vertices_per_strand,
@@ -497,14 +530,17 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
   // Exit: positions, tangents and anchors visible to the host's vertex shaders (and compute); counters to the host.
   barriers.clear();
   for (InstanceWork& w : work) {
-    for (uint32_t b : {sim::kBindingPositions, sim::kBindingTangents, sim::kBindingAnchors})
+    for (uint32_t b : {sim::kBindingPositions, sim::kBindingTangents, sim::kBindingAnchors}) {
+      if (w.idle) break;
       barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                         VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
-    barriers.push_back(buffer_barrier(w.inst->counters.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                                      VK_ACCESS_2_HOST_READ_BIT));
+    }
+    if (!w.idle)
+      barriers.push_back(buffer_barrier(w.inst->counters.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                        VK_ACCESS_2_HOST_READ_BIT));
     TvkInstance_T& inst = *w.inst;
     inst.steps += w.steps;
     inst.steps_last_frame = w.steps;

@@ -55,6 +55,7 @@
 #define TVK_STEP_RESET 1u       // StepParams.flags.x: put every strand at its skinned rest pose with zero velocity
 #define TVK_STEP_MOVE_STATE 2u  // StepParams.flags.x: turn pos/prev/prevprev by the teleport before integrating
 #define TVK_STEP_MAX_CAPSULES 8u  // capsules per instance (StepParams holds 2 vec4 each) = TVK_MAX_CAPSULES (sim_types.h)
+#define TVK_COUNTER_AWAKE_BIT 0x80000000u  // counters[slot]: the frame slot's awake bit; bits 0-30 count resets
 #define TVK_QUIET_FRAMES 3u     // anchor[g].w: measured still frames in a row, then the guide sleeps (layout.glsl)
 
 // ---- rendering (the rasterised hair passes): descriptor set 0 and the limits of DrawConstants --------------

@@ -34,10 +34,11 @@ enum Binding : uint32_t {
   kBindingSkin = 12,            // vec4 x kSkinVec4PerBone per (substep, bone), per frame
   kBindingGroups = 13,          // GroupParams x groups, per frame
   kBindingSteps = 14,           // StepParams x substeps, per frame
-  kBindingCounters = 15,        // uint per instance, read-write
+  kBindingCounters = 15,        // uint per frame slot (resets, kCounterAwakeBit), host-visible, read-write
   kBindingAnchors = 16,         // vec4 x G, written by integrate: each guide's anchor (its skinned rest root)
 };
 inline constexpr uint32_t kBindingCount = 17;
+inline constexpr uint32_t kCounterAwakeBit = TVK_COUNTER_AWAKE_BIT;
 
 // ---- specialization constants ----
 enum SpecConstant : uint32_t {
@@ -125,7 +126,7 @@ struct PushConstants {
   uint32_t step_index;
   uint32_t skin_base;      // index of a vec4 in the Skin buffer
   uint32_t group_base;
-  uint32_t counter_index;
+  uint32_t counter_index;  // the frame slot's word in the counters buffer (layout.glsl: resets, awake bit)
   uint32_t step_count = 0;   // fused frame kernel: substeps to run
   uint32_t skin_stride = 0;  // fused frame kernel: vec4 of skinning data per substep
   float rest_move = 0;       // fused frame kernels: m per step, > 0 in a still frame (layout.glsl, sleeping strands)
