@@ -64,7 +64,9 @@ fi
 
 # SLEEP=1: only the sleeping table (docs/simulation.md, "Sleeping"): each groom moving (`shake`) and at rest under a
 # still head (`settle`, 900 warm-up frames to come to rest) with the default sleep_below and with sleeping off, at
-# 240 Hz on the default path; the JSON's guides_asleep counts the sleeping guides after the timed frames. Then stop.
+# 240 Hz on the default path; the JSON's guides_asleep counts the sleeping guides after the timed frames. Then the
+# idle-instance rows ("Idle instances"): Sintel (baked --scale 0.0046) and TestHair1 (--units cm) from DATADIR and
+# the conservative model's Ratboy, `settle` after 1,500 warm-up frames. Then stop.
 if [ "${SLEEP:-0}" = 1 ]; then
   Z="--step-rate 240 --frames 300 --warmup 900 --error-frames 2"
   {
@@ -81,6 +83,13 @@ if [ "${SLEEP:-0}" = 1 ]; then
       perf "sleep-$g-settle" default "${G[@]}" --scene settle $Z
       perf "sleep-$g-settle-off" default "${G[@]}" --scene settle --sleep-below 0 $Z
     done
+    I="--step-rate 240 --frames 300 --warmup 1500 --error-frames 2"
+    SINTEL_SRC="$DATA/sintel/sintel_hair.tfx" TESTHAIR1_SRC="$DATA/tressfx/testhair1/TestHair1.tfx"
+    [ -f "$SINTEL_SRC" ] && "$BAKE" "$SINTEL_SRC" --scale 0.0046 -o "$OUT/sintel.tvkhair" > "$OUT/bake_sintel.log" 2>&1 &&
+      perf "idle-sintel-settle" default --asset "$OUT/sintel.tvkhair" --scene settle $I
+    [ -f "$TESTHAIR1_SRC" ] && "$BAKE" "$TESTHAIR1_SRC" --units cm -o "$OUT/testhair1.tvkhair" > "$OUT/bake_testhair1.log" 2>&1 &&
+      perf "idle-testhair1-settle" default --asset "$OUT/testhair1.tvkhair" --scene settle $I
+    [ -f "$MOHAWK" ] && perf "idle-ratboy-conservative-settle" conservative --asset "$MOHAWK" --scene settle $I
   } | tee "$OUT/sleep.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
