@@ -5,6 +5,9 @@
 // the double model keeps moving is the model's, not float32's. Diagnostic, not a test:
 //   tressvk_rest_probe curly 64 1500 [ITERATIONS [LOCAL_STIFFNESS [DAMPING]]]
 //   tressvk_rest_probe path/to/groom.tvkhair 0 1500
+// TVK_GRAVITY_Y sets gravity's y (9.81: hair hanging against its groom, as under a head upside down); TVK_DUMP_GUIDE=G
+// prints guide G's shape at rest, per edge: pinned or free, its rest bend to the next edge and the angle between its
+// current and its rest direction.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,11 +43,28 @@ int main(int argc, char** argv) {
   if (local_stiffness >= 0.0f) p.local_stiffness = local_stiffness;
   if (damping >= 0.0f) p.damping = damping;
   std::vector<TvkSimParams> params(std::max<size_t>(1, a.groups.size()), p);
-  Simulator sim(a, params, default_settings());
+  TvkSimSettings settings = default_settings();
+  if (const char* gy = std::getenv("TVK_GRAVITY_Y")) settings.gravity[1] = static_cast<float>(std::atof(gy));
+  Simulator sim(a, params, settings);
   const SceneGeometry geo = scene_geometry(sim.rest());
   for (uint32_t f = 0; f < frames; ++f) sim.advance(scene_frame("settle", f, geo));
   const std::vector<Vec3> before(sim.positions().begin(), sim.positions().end());
   const FramePlan plan = sim.advance(scene_frame("settle", frames, geo));
+  if (const char* dump = std::getenv("TVK_DUMP_GUIDE")) {
+    const uint32_t g = static_cast<uint32_t>(std::atoi(dump)), n = sim.rest().vertices_per_strand;
+    const auto degrees = [](Vec3 x, Vec3 y) {
+      return std::acos(std::clamp(dot(x, y) / (length(x) * length(y)), -1.0, 1.0)) * 180.0 / 3.14159265358979;
+    };
+    std::printf("guide %u at rest, edge by edge:\n", g);
+    for (uint32_t v = 0; v + 1 < n; ++v) {
+      const size_t i = size_t{g} * n + v;
+      const Vec3 rest = sim.rest().rest_pos[i + 1] - sim.rest().rest_pos[i];
+      const Vec3 now = sim.positions()[i + 1] - sim.positions()[i];
+      const double bend = v + 2 < n ? degrees(rest, sim.rest().rest_pos[i + 2] - sim.rest().rest_pos[i + 1]) : 0.0;
+      std::printf("  edge %2u (vertex %s): rest bend to the next %5.1f deg, now %5.1f deg from its rest direction\n", v,
+                  sim.rest().inv_mass[i] > 0.0 ? "free" : "pinned", bend, degrees(rest, now));
+    }
+  }
   const uint32_t n = sim.rest().vertices_per_strand, g_count = sim.rest().guide_count;
   const double median = sim.rest().median_length;
   const double steps = static_cast<double>(plan.steps.size());
