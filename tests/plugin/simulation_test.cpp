@@ -41,7 +41,7 @@ struct SceneResult {
   double stretch_max = 0;
   uint32_t nan_strands = 0;
   uint32_t exploded_strands = 0;
-  std::vector<std::string> passes;  // of the last frame
+  std::vector<std::string> passes;  // of the last frame that recorded any (an idle instance records none)
   std::vector<uint32_t> steps;      // steps simulated in each frame
 };
 
@@ -89,6 +89,7 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
       if (f > 0) ref.set_state(gpu.state().pos, gpu.state().prev, gpu.state().prevprev);
       ref.advance(frame);
       gpu.run_frame(frame);
+      if (std::vector<std::string> p = gpu.recorded_passes(); !p.empty()) result.passes = std::move(p);
       result.steps.push_back(gpu.stats().steps_last_frame);
       const auto err = reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(), median);
       result.step_error_max = std::max(result.step_error_max, err.max_rel);
@@ -112,7 +113,6 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
       result.nan_strands = std::max(result.nan_strands, health.nan_strands);
       result.exploded_strands = std::max(result.exploded_strands, health.exploded_strands);
     }
-    result.passes = gpu.recorded_passes();
   }
   return result;
 }

@@ -88,6 +88,10 @@ struct Tally {
     std::vector<const char*> names(np);
     tressvk_get_recorded_passes(ctx, names.data(), np);
     out.passes.assign(names.begin(), names.end());
+    // An instance whose every guide sleeps records nothing (docs/simulation.md, "Idle instances"): then the passes
+    // are those the frames before it timed.
+    if (out.passes.empty())
+      for (const auto& [name, times] : pass_ms) out.passes.push_back(name);
     for (const std::string& p : out.passes) {
       out.pass_times.push_back({p, median(pass_ms[p]), pass_dispatches[p]});
       out.dispatches_per_frame += pass_dispatches[p];
