@@ -95,6 +95,25 @@ if [ "${SLEEP:-0}" = 1 ]; then
   exit 0
 fi
 
+# CROWD=1: only the crowd table (docs/simulation.md, "A crowd"): K = 1, 2, 4, ..., 64 instances of the Ratboy mohawk in
+# one tressvk_cmd_simulate (perf --instances), in runs of 4, runs of 8 and the one-thread kernel, at 240 and 60 Hz.
+if [ "${CROWD:-0}" = 1 ]; then
+  C="--scene shake --frames 200 --warmup 60 --error-frames 1"
+  {
+    echo "| groom | guide vertices | step rate | path (kernel) | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+    for rate in 240 60; do
+      for k in 1 2 4 8 16 32 64; do
+        for path in runs4 runs8 fused; do
+          [ -f "$MOHAWK" ] && perf "crowd-$k-$path-$rate" "$path" --asset "$MOHAWK" --instances "$k" --step-rate "$rate" $C
+        done
+      done
+    done
+  } | tee "$OUT/crowd.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
 # RUNS=1: only the run kernel's crossover table (runs of 4, of 8 and the one-thread kernel on curly 4,096, 8,192 and
 # 16,384 x 32, and the default on Ratboy, at 240 and 60 Hz; docs/simulation.md, "The run kernel"), then stop.
 if [ "${RUNS:-0}" = 1 ]; then

@@ -70,3 +70,24 @@ foreach(path default fused passes)
   endif()
   message(STATUS "${path} (${kernel}): ${dispatches_per_frame} dispatches/frame, step error ${step_error_max_rel}")
 endforeach()
+
+# A crowd (--instances 3): every instance in one tressvk_cmd_simulate, one frame-kernel dispatch each, validation clean
+# (the instances' barriers are their own buffers'), the step error the first instance's.
+set(json "${OUT_DIR}/crowd.json")
+execute_process(COMMAND "${BENCH}" perf --builtin curly --guides 40 --instances 3 --scene shake --frames 4 --warmup 2
+                        --error-frames 1 --validation --json "${json}"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "tressvk-bench perf --instances 3 failed (${rc}):\n${out}\n${err}")
+endif()
+file(READ "${json}" text)
+string(JSON instances GET "${text}" instances)
+string(JSON dispatches GET "${text}" dispatches_per_frame)
+string(JSON crowd_error GET "${text}" step_error_max_rel)
+if(NOT instances EQUAL 3 OR NOT dispatches EQUAL 3)
+  message(FATAL_ERROR "perf --instances 3: ${instances} instances, ${dispatches} dispatches per frame, expected 3 and 3")
+endif()
+if(crowd_error GREATER 1e-5)
+  message(FATAL_ERROR "perf --instances 3: step error ${crowd_error} over 1e-5")
+endif()
+message(STATUS "crowd of 3: ${dispatches} dispatches/frame, step error ${crowd_error}")

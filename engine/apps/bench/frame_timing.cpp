@@ -40,7 +40,8 @@ bool settled(const std::vector<double>& ms, double window_ms, double tolerance) 
 
 }  // namespace
 
-FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, TvkInstance inst, model::FramePlanner& planner,
+FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<const TvkInstance> instances,
+                       model::FramePlanner& planner,
                        const std::function<TvkSimFrame(uint32_t)>& frame_of, const WarmUp& warmup, uint32_t frames,
                        uint32_t in_flight) {
   FrameTimes out;
@@ -57,7 +58,7 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, TvkInstance in
     const TvkSimFrame frame = frame_of(f);
     steps_total += planner.plan(frame).steps.size();
     ++frames_total;
-    host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+    for (TvkInstance inst : instances) host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
     host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
     const engine::FrameLoop::Frame& fr = loop.begin();
     // The frame that last used this slot is complete now: its per-pass timings name the dispatches of a frame.
@@ -75,7 +76,7 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, TvkInstance in
         out.sim_ms.push_back(ms);
     }
     fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-    host::check_tvk(host::record_simulate(ctx, fr.cmd, inst), ctx, "tressvk_cmd_simulate");
+    host::check_tvk(host::record_simulate(ctx, fr.cmd, instances), ctx, "tressvk_cmd_simulate");
     fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     loop.end();
   };

@@ -94,6 +94,11 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
   perf->add_option("--guides", cmd.guides, "guides of a built-in groom")->capture_default_str();
   perf->add_option("--follows", cmd.follows, "follow hairs per guide of a built-in groom")->capture_default_str();
   perf->add_option("--vertices", cmd.vertices, "vertices per strand of a built-in groom (0 = its default)");
+  perf->add_option("--instances", cmd.instances,
+                   "instances of the groom, all simulated in one tressvk_cmd_simulate a frame (a crowd); the step error "
+                   "is the first one's")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 4096));
   add_simulation_options(*perf, cmd.params, cmd.settings);
   perf->add_option("--params", cmd.params_path, "JSON parameter file (as compare --params)")->check(CLI::ExistingFile);
   perf->add_option("--json", cmd.json_path, "write the results as JSON");
@@ -158,8 +163,9 @@ int execute_perf_command(const PerfCommand& given) {
     ic.asset = asset;
     ic.settings = &cmd.settings;
     ic.params = &cmd.params;
-    TvkInstance inst = nullptr;
-    host::check_tvk(tressvk_create_instance(ctx, &ic, &inst), ctx, "tressvk_create_instance");
+    std::vector<TvkInstance> crowd(cmd.instances, nullptr);
+    for (TvkInstance& i : crowd) host::check_tvk(tressvk_create_instance(ctx, &ic, &i), ctx, "tressvk_create_instance");
+    TvkInstance inst = crowd.front();
 
     const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), cmd.params);
     reference::Simulator ref(groom, params, cmd.settings);  // planner in step; loaded from the GPU for the error
@@ -169,7 +175,7 @@ int execute_perf_command(const PerfCommand& given) {
     WarmUp warm;
     warm.frames = cmd.warmup;
     const FrameTimes times = time_frames(
-        dev, ctx, inst, ref.planner(), [&](uint32_t f) { return reference::scene_frame(cmd.scene, f, geometry); },
+        dev, ctx, crowd, ref.planner(), [&](uint32_t f) { return reference::scene_frame(cmd.scene, f, geometry); },
         warm, cmd.frames, cmd.frames_in_flight);
     const uint32_t total = times.warmup_frames + cmd.frames;
     const std::vector<double>& frame_ms = times.frame_ms;
@@ -187,7 +193,7 @@ int execute_perf_command(const PerfCommand& given) {
     }
     const uint64_t guide_vertices = uint64_t{groom.guide_count()} * groom.vertices_per_strand;
     const uint64_t follow_vertices = guide_vertices * groom.follow_per_guide;
-    const uint64_t frame_byte_count = frame_bytes(guide_vertices, follow_vertices, vsp, local_shape);
+    const uint64_t frame_byte_count = cmd.instances * frame_bytes(guide_vertices, follow_vertices, vsp, local_shape);
     const CopyTiming copy = time_copy(dev, frame_byte_count, 50);
 
     // Guides asleep after the timed frames (a still groom at rest, docs/simulation.md "Sleeping").
@@ -220,7 +226,8 @@ int execute_perf_command(const PerfCommand& given) {
     tressvk_get_recorded_passes(ctx, pass_names.data(), np);
     const char* path_env = std::getenv("TRESSVK_SIM_PATH");
     // The kernel that ran: the frame pass's name up to its terms ("frame(runs4)", "frame"), or "passes".
-    std::string kernel = np > 1 ? std::string("passes") : np == 1 ? std::string(pass_names[0]) : std::string();
+    // (No pass: the instance was idle, every guide asleep: docs/simulation.md, "Idle instances".)
+    std::string kernel = np > 1 ? std::string("passes") : np == 1 ? std::string(pass_names[0]) : std::string("idle");
     kernel = kernel.substr(0, kernel.find('+'));
 
     const double gpu_ms = percentile(frame_ms, 0.5);
@@ -235,6 +242,7 @@ int execute_perf_command(const PerfCommand& given) {
         {"vertices_per_strand", groom.vertices_per_strand},
         {"follow_per_guide", groom.follow_per_guide},
         {"guide_vertices", guide_vertices},
+        {"instances", cmd.instances},
         {"step_rate_hz", cmd.settings.time.step_rate},
         {"sleep_below", cmd.settings.sleep_below},
         {"guides_asleep", guides_asleep},
@@ -258,7 +266,7 @@ int execute_perf_command(const PerfCommand& given) {
     };
 
     dev.wait_idle();
-    tressvk_destroy_instance(inst);
+    for (TvkInstance i : crowd) tressvk_destroy_instance(i);
     tressvk_destroy_asset(asset);
     tressvk_destroy_context(ctx);
     if (validation_failed(dev, cmd.validation, "tressvk-bench perf")) return kExitValidation;
@@ -268,8 +276,10 @@ int execute_perf_command(const PerfCommand& given) {
 
   if (cmd.table_row) {
     // | groom | guide vertices | step rate | path (kernel) | us/frame | p99 | GB/s (copy) | dispatches | step error |
-    std::printf("| %s | %llu | %.0f Hz | %s (%s) | %.1f | %.1f | %.0f (%.0f) | %u | %.2g |\n",
-                out["groom"].get<std::string>().c_str(), static_cast<unsigned long long>(out["guide_vertices"].get<uint64_t>()),
+    const std::string groom_cell = out["groom"].get<std::string>() +
+                                   (cmd.instances > 1 ? " x " + std::to_string(cmd.instances) + " instances" : "");
+    std::printf("| %s | %llu | %.0f Hz | %s (%s) | %.1f | %.1f | %.0f (%.0f) | %u | %.2g |\n", groom_cell.c_str(),
+                static_cast<unsigned long long>(out["guide_vertices"].get<uint64_t>()),
                 out["step_rate_hz"].get<double>(), out["sim_path"].get<std::string>().c_str(),
                 out["kernel"].get<std::string>().c_str(),
                 1e3 * out["gpu_ms_per_frame"].get<double>(), 1e3 * out["gpu_ms_per_frame_p99"].get<double>(),

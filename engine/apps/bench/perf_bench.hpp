@@ -18,6 +18,7 @@ struct PerfCommand {
   std::string asset_path, builtin, scene = "shake", json_path, device, params_path;
   uint32_t frames = 300, warmup = 60, frames_in_flight = 3, error_frames = 3;
   uint32_t guides = 64, follows = 0, vertices = 0;
+  uint32_t instances = 1;  // instances of the groom simulated in one tressvk_cmd_simulate a frame (a crowd)
   TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
   TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
   bool validation = false;
