@@ -96,7 +96,8 @@ if [ "${SLEEP:-0}" = 1 ]; then
 fi
 
 # CROWD=1: only the crowd table (docs/simulation.md, "A crowd"): K = 1, 2, 4, ..., 64 instances of the Ratboy mohawk in
-# one tressvk_cmd_simulate (perf --instances), in runs of 4, runs of 8 and the one-thread kernel, at 240 and 60 Hz.
+# one tressvk_cmd_simulate (perf --instances), in runs of 4, runs of 8 and the one-thread kernel, at 240 and 60 Hz;
+# then /usr/bin/python3 scripts/plot-crowd.py OUTDIR docs/images/sim-crowd.png.
 if [ "${CROWD:-0}" = 1 ]; then
   C="--scene shake --frames 200 --warmup 60 --error-frames 1"
   {
