@@ -31,22 +31,40 @@ asset::HairAsset sleep_groom(uint32_t vertices_per_strand) {
   return baker::make_builtin_groom("straight", options);
 }
 
+// A groom loaded once with two instances: one that may sleep (the default settings) and a twin that never does
+// (sleep_below 0). Until the first sleeps they compute the same bits (the count does not touch the physics); after,
+// the second is what sleeping left out.
+struct Twins {
+  explicit Twins(uint32_t vertices_per_strand)
+      : hair(sleep_groom(vertices_per_strand)),
+        params(std::max<size_t>(1, hair.groups.size()), TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT),
+        ctx(test::create_plugin_context()),
+        a(test::load_asset(ctx.get(), hair)),
+        gpu(ctx.get(), a.get(), params, settings),
+        awake(ctx.get(), a.get(), params, never_sleeps()) {}
+  static TvkSimSettings never_sleeps() {
+    TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
+    s.sleep_below = 0.0f;
+    return s;
+  }
+  asset::HairAsset hair;
+  std::vector<TvkSimParams> params;
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  test::PluginContext ctx;
+  test::AssetHandle a;
+  test::GpuInstance gpu, awake;
+};
+
 // Settles the groom under a still head (the `settle` scene) until every guide sleeps, then checks what sleeping
 // means: a sleeping strand is not simulated (a vertex moved by hand stays where it was put), the state it keeps is
 // where the reference would have let it settle, and the first frame that is not still wakes every guide.
 void check_sleep(uint32_t vertices_per_strand) {
-  const asset::HairAsset hair = sleep_groom(vertices_per_strand);
-  const std::vector<TvkSimParams> params(std::max<size_t>(1, hair.groups.size()), TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
-  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
-  TvkSimSettings awake_settings = settings;
-  awake_settings.sleep_below = 0.0f;
-  test::PluginContext ctx = test::create_plugin_context();
-  test::AssetHandle a(test::load_asset(ctx.get(), hair));
-  // Two instances of the groom, one that may sleep and one that never does: until the first sleeps they compute the
-  // same bits (the count does not touch the physics); after, the second is what sleeping left out.
-  test::GpuInstance gpu(ctx.get(), a.get(), params, settings);
-  test::GpuInstance awake(ctx.get(), a.get(), params, awake_settings);
-  const reference::Simulator ref(hair, params, settings);
+  Twins twins(vertices_per_strand);
+  const asset::HairAsset& hair = twins.hair;
+  test::GpuInstance& gpu = twins.gpu;
+  test::GpuInstance& awake = twins.awake;
+  const test::PluginContext& ctx = twins.ctx;
+  const reference::Simulator ref(hair, twins.params, twins.settings);
   const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
   const double median = ref.median_strand_length();
   const uint32_t n = hair.vertices_per_strand;
@@ -170,17 +188,13 @@ TEST_CASE("a groom sleeps in a steady wind and never in a gusting one", "[plugin
 // still, and the state it keeps is the one it slept in. Beside it in the same batch, a twin that never sleeps keeps
 // its dispatch every frame.
 TEST_CASE("an instance whose every guide sleeps records no dispatch until a frame is not still", "[plugin][simulation]") {
-  const asset::HairAsset hair = sleep_groom(8);
-  const std::vector<TvkSimParams> params(1, TvkSimParams TVK_SIM_PARAMS_DEFAULT_INIT);
-  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
-  TvkSimSettings awake_settings = settings;
-  awake_settings.sleep_below = 0.0f;
-  test::PluginContext ctx = test::create_plugin_context();
-  test::AssetHandle a(test::load_asset(ctx.get(), hair));
-  test::GpuInstance gpu(ctx.get(), a.get(), params, settings);
-  test::GpuInstance awake(ctx.get(), a.get(), params, awake_settings);
-  const reference::SceneGeometry geometry = reference::scene_geometry(reference::Simulator(hair, params, settings).rest());
-  const auto recorded = [&] { return tressvk_get_recorded_passes(ctx.get(), nullptr, 0); };
+  Twins twins(8);
+  const asset::HairAsset& hair = twins.hair;
+  test::GpuInstance& gpu = twins.gpu;
+  test::GpuInstance& awake = twins.awake;
+  const reference::SceneGeometry geometry =
+      reference::scene_geometry(reference::Simulator(hair, twins.params, twins.settings).rest());
+  const auto recorded = [&] { return tressvk_get_recorded_passes(twins.ctx.get(), nullptr, 0); };
   const auto moved = [](const test::GpuState& x, const test::GpuState& y) {
     return reference::position_error(std::span<const test::Point>(x.pos), std::span<const test::Point>(y.pos), 1.0).max_rel;
   };
@@ -200,7 +214,7 @@ TEST_CASE("an instance whose every guide sleeps records no dispatch until a fram
   CHECK(moved(slept, gpu.state()) == 0.0);
   // In a batch with an instance that runs, only that one is dispatched (one frame kernel), and each keeps its own.
   const TvkSimFrame still = reference::scene_frame("settle", f++, geometry);
-  test::run_frame_batched(ctx.get(), {&gpu, &awake}, {still, still});
+  test::run_frame_batched(twins.ctx.get(), {&gpu, &awake}, {still, still});
   CHECK(recorded() == 1);
   CHECK(moved(slept, gpu.state()) == 0.0);
   CHECK(asleep(awake.state()) == 0);
