@@ -5,7 +5,7 @@
 // the double model keeps moving is the model's, not float32's. Diagnostic, not a test:
 //   tressvk_rest_probe curly 64 1500 [ITERATIONS [LOCAL_STIFFNESS [DAMPING]]]
 //   tressvk_rest_probe path/to/groom.tvkhair 0 1500
-// TVK_GRAVITY_Y sets gravity's y (9.81: hair hanging against its groom, as under a head upside down); TVK_DUMP_GUIDE=G
+// TVK_GLOBAL and TVK_GLOBAL_RANGE set global_stiffness and global_range; TVK_GRAVITY_Y sets gravity's y (9.81: hair hanging against its groom, as under a head upside down); TVK_DUMP_GUIDE=G
 // prints guide G's shape at rest, per edge: pinned or free, its rest bend to the next edge and the angle between its
 // current and its rest direction.
 #include <algorithm>
@@ -42,6 +42,8 @@ int main(int argc, char** argv) {
   p.local_iterations = iterations;
   if (local_stiffness >= 0.0f) p.local_stiffness = local_stiffness;
   if (damping >= 0.0f) p.damping = damping;
+  if (const char* e = std::getenv("TVK_GLOBAL")) p.global_stiffness = static_cast<float>(std::atof(e));
+  if (const char* e = std::getenv("TVK_GLOBAL_RANGE")) p.global_range = static_cast<float>(std::atof(e));
   std::vector<TvkSimParams> params(std::max<size_t>(1, a.groups.size()), p);
   TvkSimSettings settings = default_settings();
   if (const char* gy = std::getenv("TVK_GRAVITY_Y")) settings.gravity[1] = static_cast<float>(std::atof(gy));
