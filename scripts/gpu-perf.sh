@@ -27,6 +27,12 @@ if [ ! -f "$MOHAWK" ] && [ -f "$RATBOY" ]; then
   "$BAKE" "$RATBOY" "${BONES[@]}" --follow 2 -o "$MOHAWK" > "$OUT/bake.log" 2>&1
 fi
 
+# The header of the Markdown table that `perf --table-row` rows fill (the path column names the kernel that ran).
+table_header() {
+  echo "| groom | guide vertices | step rate | path (kernel) | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+}
+
 perf() {  # json name, path (TRESSVK_SIM_PATH: default = unset, runs, fused, passes), then bench arguments; path
           # "compliant" = the compliant model's lane kernel, "conservative" its conservative local shape
   local name=$1 path=$2 model= run=; shift 2
@@ -43,8 +49,7 @@ perf() {  # json name, path (TRESSVK_SIM_PATH: default = unset, runs, fused, pas
 T="--scene shake --frames 300 --warmup 60 --error-frames 2"
 table() {
   local prefix=$1 rate path; shift
-  echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
-  echo "|---|---|---|---|---|---|---|---|---|"
+  table_header
   for rate in 60 240; do
     for path in "$@"; do
       [ -f "$MOHAWK" ] && perf "$prefix-ratboy-$path-$rate" "$path" --asset "$MOHAWK" --step-rate "$rate" $T
@@ -70,8 +75,7 @@ fi
 if [ "${SLEEP:-0}" = 1 ]; then
   Z="--step-rate 240 --frames 300 --warmup 900 --error-frames 2"
   {
-    echo "| groom | guide vertices | step rate | path (kernel) | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
-    echo "|---|---|---|---|---|---|---|---|---|"
+    table_header
     for g in ratboy straight1M curly1M curly4M; do
       case $g in
         ratboy) [ -f "$MOHAWK" ] || continue; G=(--asset "$MOHAWK") ;;
@@ -101,8 +105,7 @@ fi
 if [ "${CROWD:-0}" = 1 ]; then
   C="--scene shake --frames 200 --warmup 60 --error-frames 1"
   {
-    echo "| groom | guide vertices | step rate | path (kernel) | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
-    echo "|---|---|---|---|---|---|---|---|---|"
+    table_header
     for rate in 240 60; do
       for k in 1 2 4 8 16 32 64; do
         for path in runs4 runs8 fused; do
@@ -120,8 +123,7 @@ fi
 if [ "${RUNS:-0}" = 1 ]; then
   R="--scene shake --frames 120 --warmup 30 --error-frames 1"
   {
-    echo "| groom | guide vertices | step rate | path (kernel) | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
-    echo "|---|---|---|---|---|---|---|---|---|"
+    table_header
     for rate in 240 60; do
       [ -f "$MOHAWK" ] && perf "runs-ratboy-default-$rate" default --asset "$MOHAWK" --step-rate "$rate" $R
       for guides in 4096 8192 16384; do
@@ -148,8 +150,7 @@ fi
 # default path runs the one-thread kernel above 768 k guide vertices: its rows there are skipped when fused runs too.
 S="--scene shake --frames 120 --warmup 30 --error-frames 1"
 {
-  echo "| groom | guide vertices | step rate | path | µs/frame (median) | p99 | GB/s achieved (copy) | dispatches/frame | step error |"
-  echo "|---|---|---|---|---|---|---|---|---|"
+  table_header
   for guides in 320 1024 3200 10240 32768 131072 524288; do
     for rate in ${SWEEP_RATES:-60 120 240}; do
       for path in ${SWEEP_PATHS:-default fused passes}; do

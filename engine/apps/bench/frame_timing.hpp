@@ -36,8 +36,8 @@ struct FrameTimes {
 
 // Records the warm-up frames and then `frames` timed ones, frame_of(0, 1, ...), into one frame loop of `in_flight`
 // frames (the context must have been created with that many; the GPU is never left idle between warm-up and timed
-// frames), waits for the last. Every instance gets the same frame, all of them in one tressvk_cmd_simulate. `planner` is kept in step with the plugin's to count the steps. Throws engine::Error
-// when a call fails.
+// frames), waits for the last. Every instance gets the same frame, all of them in one tressvk_cmd_simulate. `planner`
+// is kept in step with the plugin's to count the steps. Throws engine::Error when a call fails.
 FrameTimes time_frames(const engine::Device& device, TvkContext context, std::span<const TvkInstance> instances,
                        model::FramePlanner& planner, const std::function<TvkSimFrame(uint32_t)>& frame_of,
                        const WarmUp& warmup, uint32_t frames, uint32_t in_flight);

@@ -198,7 +198,8 @@ int execute_perf_command(const PerfCommand& given) {
 
     // Guides asleep after the timed frames (a still groom at rest, docs/simulation.md "Sleeping").
     uint32_t guides_asleep = 0;
-    for (const auto& a : host::read_hair_state(dev, inst).anchors) guides_asleep += a[3] >= float(TVK_ASLEEP_QUIET_FRAMES) ? 1u : 0u;
+    for (const auto& a : host::read_hair_state(dev, inst).anchors)
+      guides_asleep += a[3] >= float(TVK_ASLEEP_QUIET_FRAMES) ? 1u : 0u;
 
     // Step error, outside the timed frames: load the reference with the GPU state, advance both one frame.
     double step_error = 0;

@@ -337,7 +337,8 @@ int execute_sweep_command(const SweepCommand& given) {
         warm.min_ms = warmed ? cmd.warmup_ms_each : std::max(cmd.warmup_ms, cmd.warmup_ms_each);
         warm.max_ms = std::max(warm.min_ms, cmd.warmup_ms_max);
         warmed = true;
-        const FrameTimes t = time_frames(dev, ctx, std::span<const TvkInstance>(&inst, 1), planner, frame_of, warm, cmd.timed_frames, cmd.frames_in_flight);
+        const FrameTimes t = time_frames(dev, ctx, std::span<const TvkInstance>(&inst, 1), planner, frame_of, warm,
+                                         cmd.timed_frames, cmd.frames_in_flight);
         dev.wait_idle();
         tressvk_destroy_instance(inst);
         nlohmann::json& r = rows[row++];

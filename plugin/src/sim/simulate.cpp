@@ -313,13 +313,12 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide,
                                                  inst.asset->rest.pinned_tip_strands > 0);
   work.passes = passes_for_path(ctx, inst, terms);
-  // The fused frame kernels sleep; one pass per dispatch never does.
-  const bool fused = work.passes.size() == 1 && (work.passes.front().info->id == PassId::kFrame);
-  // Still frames in a row: one in kMeasureEvery measures the strands' motion (layout.glsl), the others pass the
-  // threshold negated.
   // A frame without steps runs nothing and changes nothing: it leaves the count (and idleness) as they were.
-  constexpr uint64_t kMeasureEvery = 4;
   if (work.steps == 0) return TVK_SUCCESS;
+  // The fused frame kernels sleep; one pass per dispatch never does. Still frames in a row: one in kMeasureEvery
+  // measures the strands' motion (layout.glsl), the others pass the threshold negated.
+  const bool fused = work.passes.size() == 1 && (work.passes.front().info->id == PassId::kFrame);
+  constexpr uint64_t kMeasureEvery = 4;
   inst.still_frames = still ? inst.still_frames + 1 : 0;
   const float threshold = static_cast<float>(inst.settings.sleep_below * inst.asset->rest.median_length);
   work.rest_move = !still || !fused ? 0.0f : inst.still_frames % kMeasureEvery == 1 ? threshold : -threshold;
@@ -331,7 +330,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   // still frame would run one either (sleeping guides are padding), so none is recorded, barriers included, until a
   // frame is not still.
   work.counter_index = slice;
-  if (work.rest_move == 0.0f || threshold <= 0.0f) {
+  if (work.rest_move == 0.0f) {  // not still, not a frame kernel, or sleeping off
     inst.idle = false;
     inst.awake_probe[slice] = 0;
     return TVK_SUCCESS;
@@ -530,17 +529,16 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
   // Exit: positions, tangents and anchors visible to the host's vertex shaders (and compute); counters to the host.
   barriers.clear();
   for (InstanceWork& w : work) {
-    for (uint32_t b : {sim::kBindingPositions, sim::kBindingTangents, sim::kBindingAnchors}) {
-      if (w.idle) break;
-      barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                                        VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
-    }
-    if (!w.idle)
+    if (!w.idle) {  // an idle instance wrote nothing (see the entry barriers)
+      for (uint32_t b : {sim::kBindingPositions, sim::kBindingTangents, sim::kBindingAnchors})
+        barriers.push_back(buffer_barrier(writable_buffer(*w.inst, b), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                          VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                          VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
       barriers.push_back(buffer_barrier(w.inst->counters.buffer, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                                         VK_ACCESS_2_HOST_READ_BIT));
+    }
     TvkInstance_T& inst = *w.inst;
     inst.steps += w.steps;
     inst.steps_last_frame = w.steps;
