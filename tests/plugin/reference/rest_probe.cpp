@@ -5,9 +5,13 @@
 // the double model keeps moving is the model's, not float32's. Diagnostic, not a test:
 //   tressvk_rest_probe curly 64 1500 [ITERATIONS [LOCAL_STIFFNESS [DAMPING]]]
 //   tressvk_rest_probe path/to/groom.tvkhair 0 1500
-// TVK_GLOBAL and TVK_GLOBAL_RANGE set global_stiffness and global_range; TVK_GRAVITY_Y sets gravity's y (9.81: hair hanging against its groom, as under a head upside down); TVK_DUMP_GUIDE=G
+// TVK_GLOBAL and TVK_GLOBAL_RANGE set global_stiffness and global_range; TVK_STEP_RATE sets the step rate (Hz); TVK_GRAVITY_Y sets gravity's y (9.81: hair hanging against its groom, as under a head upside down); TVK_DUMP_GUIDE=G
 // prints guide G's shape at rest, per edge: pinned or free, its rest bend to the next edge and the angle between its
-// current and its rest direction.
+// current and its rest direction. TVK_ONLY_GUIDES=G1,G2,... simulates only those guides of the groom (a strand does
+// not interact with the others; short strands are still carried rigidly by the whole groom's median), in seconds
+// where the whole Ratboy takes minutes. TVK_SAVE_POSE=FILE writes the settled guide vertices; TVK_COMPARE_POSE=FILE
+// prints how far they are from another run's (rms, largest, mean tip height; docs/accuracy.md "The settled look
+// against the settings").
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +22,43 @@
 #include "helpers.hpp"
 
 #include <tressvk/asset_io.hpp>
+
+namespace {
+// The asset with only the listed guides (comma-separated indices), their follows, groups and bone weights.
+tressvk::asset::HairAsset only_guides(const tressvk::asset::HairAsset& a, const std::string& list, double& median) {
+  const uint32_t n = a.vertices_per_strand, k = a.follow_per_guide;
+  std::vector<double> lengths;
+  for (uint32_t g = 0; g < a.guide_count(); ++g) {
+    double l = 0;
+    for (uint32_t v = 0; v + 1 < n; ++v) l += a.rest_lengths[size_t{g} * n + v];
+    lengths.push_back(l);
+  }
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+  median = lengths[lengths.size() / 2];
+  tressvk::asset::HairAsset o = a;
+  o.rest_positions.clear(); o.rest_lengths.clear(); o.rest_frames.clear(); o.rest_edge_local.clear();
+  o.guide_group.clear(); o.root_uv.clear(); o.bone_weights.clear(); o.follow_offsets.clear();
+  size_t at = 0;
+  while (at < list.size()) {
+    const size_t comma = std::min(list.find(',', at), list.size());
+    const uint32_t g = static_cast<uint32_t>(std::stoul(list.substr(at, comma - at)));
+    at = comma + 1;
+    if (g >= a.guide_count()) continue;
+    const size_t b = size_t{g} * n;
+    for (uint32_t v = 0; v < n; ++v) {
+      o.rest_positions.push_back(a.rest_positions[b + v]);
+      o.rest_lengths.push_back(a.rest_lengths[b + v]);
+      o.rest_frames.push_back(a.rest_frames[b + v]);
+      o.rest_edge_local.push_back(a.rest_edge_local[b + v]);
+    }
+    if (!a.guide_group.empty()) o.guide_group.push_back(a.guide_group[g]);
+    if (!a.root_uv.empty()) o.root_uv.push_back(a.root_uv[g]);
+    if (!a.bone_weights.empty()) o.bone_weights.push_back(a.bone_weights[g]);
+    for (uint32_t f = 0; f < k; ++f) o.follow_offsets.push_back(a.follow_offsets[size_t{g} * k + f]);
+  }
+  return o;
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace tvk_test;
@@ -38,7 +79,10 @@ int main(int argc, char** argv) {
   } else {
     a = groom(name, guides, 0);
   }
+  double whole_median = -1.0;  // the whole groom's median strand length, when only some guides are kept
+  if (const char* only = std::getenv("TVK_ONLY_GUIDES")) a = only_guides(a, only, whole_median);
   TvkSimParams p = default_params();
+  if (whole_median > 0.0) p.rigid_below = static_cast<float>(0.45 * whole_median);
   p.local_iterations = iterations;
   if (local_stiffness >= 0.0f) p.local_stiffness = local_stiffness;
   if (damping >= 0.0f) p.damping = damping;
@@ -47,10 +91,39 @@ int main(int argc, char** argv) {
   std::vector<TvkSimParams> params(std::max<size_t>(1, a.groups.size()), p);
   TvkSimSettings settings = default_settings();
   if (const char* gy = std::getenv("TVK_GRAVITY_Y")) settings.gravity[1] = static_cast<float>(std::atof(gy));
+  if (const char* r = std::getenv("TVK_STEP_RATE")) settings.time.step_rate = static_cast<float>(std::atof(r));
   Simulator sim(a, params, settings);
   const SceneGeometry geo = scene_geometry(sim.rest());
   for (uint32_t f = 0; f < frames; ++f) sim.advance(scene_frame("settle", f, geo));
   const std::vector<Vec3> before(sim.positions().begin(), sim.positions().end());
+  if (const char* save = std::getenv("TVK_SAVE_POSE")) {
+    if (std::FILE* f = std::fopen(save, "wb")) {
+      std::fwrite(before.data(), sizeof(Vec3), before.size(), f);
+      std::fclose(f);
+    }
+  }
+  if (const char* other = std::getenv("TVK_COMPARE_POSE")) {
+    // The settled pose against another run's (TVK_SAVE_POSE): rms and max vertex distance and the mean tip height
+    // difference, relative to the median strand length.
+    std::vector<Vec3> them(before.size());
+    std::FILE* f = std::fopen(other, "rb");
+    const size_t got = f ? std::fread(them.data(), sizeof(Vec3), them.size(), f) : 0;
+    if (f) std::fclose(f);
+    if (got == them.size()) {
+      const uint32_t nn = sim.rest().vertices_per_strand;
+      double sum = 0, worst = 0, tip = 0;
+      for (size_t i = 0; i < them.size(); ++i) {
+        const double d = length(before[i] - them[i]);
+        sum += d * d;
+        worst = std::max(worst, d);
+        if (i % nn == nn - 1) tip += before[i].y - them[i].y;
+      }
+      const double med = sim.rest().median_length;
+      std::printf("pose against %s: rms %.3g, max %.3g, mean tip height %+.3g (of the median strand length)\n", other,
+                  std::sqrt(sum / static_cast<double>(them.size())) / med, worst / med,
+                  tip / (static_cast<double>(them.size()) / nn) / med);
+    }
+  }
   const FramePlan plan = sim.advance(scene_frame("settle", frames, geo));
   if (const char* dump = std::getenv("TVK_DUMP_GUIDE")) {
     const uint32_t g = static_cast<uint32_t>(std::atoi(dump)), n = sim.rest().vertices_per_strand;

@@ -5,6 +5,7 @@
 #include <catch2/catch_test_macros.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "helpers.hpp"
@@ -77,4 +78,66 @@ TEST_CASE("rest: the curly groom comes to rest (compliant model)", "[reference][
   const double motion = motion_at_rest(groom("curly", 8), 2, Simulator::SimModel::kCompliant);
   INFO(motion << " of the median length per step");
   CHECK(motion <= kAtRest);
+}
+
+namespace {
+
+// The settled pose (guide vertices after `frames` frames of settle) at a step rate and local iteration count.
+std::vector<Vec3> settled_pose(const tressvk::asset::HairAsset& a, Simulator::SimModel model, float step_rate,
+                               uint32_t local_iterations, double& median, uint32_t frames = 1500) {
+  TvkSimParams p = default_params();
+  p.local_iterations = local_iterations;
+  TvkSimSettings s = default_settings();
+  s.time.step_rate = step_rate;
+  Simulator sim = make_sim(a, p, s);
+  sim.set_model(model);
+  const SceneGeometry geo = scene_geometry(sim.rest());
+  for (uint32_t f = 0; f < frames; ++f) sim.advance(scene_frame("settle", f, geo));
+  const size_t guide_vertices = size_t{sim.rest().guide_count} * sim.rest().vertices_per_strand;
+  median = sim.rest().median_length;
+  return {sim.positions().begin(), sim.positions().begin() + static_cast<std::ptrdiff_t>(guide_vertices)};
+}
+
+// The rms distance between two poses over the median strand length.
+double rms_rel(const std::vector<Vec3>& x, const std::vector<Vec3>& y, double median) {
+  double sum = 0;
+  for (size_t i = 0; i < x.size(); ++i) sum += dot(x[i] - y[i], x[i] - y[i]);
+  return std::sqrt(sum / static_cast<double>(x.size())) / median;
+}
+
+// A groomer's look should not depend on the step rate or the iteration count a platform runs (issue 10): the settled
+// curly groom at 120 and 480 Hz and at 1 and 4 local iterations against 240 Hz and 2 iterations, rms over the guide
+// vertices. The bar, 1e-3 of the median strand length, is a tenth of a millimetre on a 10 cm strand; the conservative
+// model measures at most 2.5e-5 here (8 guides; 64: 3.1e-5, both at 120 Hz with 1 iteration), follow-the-leader
+// 0.045-0.18 (64 guides, 60 Hz included: 0.043-0.405).
+constexpr double kSameLook = 1e-3;
+
+void check_look_independent_of_settings(Simulator::SimModel model) {
+  const auto a = groom("curly", 8);
+  double median = 0;
+  const std::vector<Vec3> base = settled_pose(a, model, 240.0f, 2, median);
+  struct Setting { float rate; uint32_t it; };
+  for (const Setting st : {Setting{120.0f, 1}, Setting{120.0f, 2}, Setting{240.0f, 1}, Setting{240.0f, 4},
+                           Setting{480.0f, 2}}) {
+    const double rms = rms_rel(settled_pose(a, model, st.rate, st.it, median), base, median);
+    INFO(st.rate << " Hz, " << st.it << " local iterations: the settled pose is " << rms
+                 << " of the median length (rms) from 240 Hz with 2");
+    CHECK(rms <= kSameLook);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("rest: the conservative model's settled curls look the same at every step rate and iteration count",
+          "[reference][rest]") {
+  check_look_independent_of_settings(Simulator::SimModel::kConservative);
+}
+
+// Known to fail (docs/accuracy.md, "The settled look against the settings"): follow-the-leader's stiffness is a
+// fraction per step and per iteration, so its settled curls change with both (64 guides: 60 Hz 0.405 rms, the tips
+// 0.70 of the length lower; 120 Hz 0.111; 480 Hz 0.057; 1 / 3 / 4 iterations 0.067 / 0.043 / 0.046), and the Ratboy
+// mohawk's more (120 Hz: 0.42 rms, the tips 0.37 of the length lower; 480 Hz: 0.30, 0.44 higher).
+TEST_CASE("rest: the settled curls look the same at every step rate and iteration count (follow-the-leader)",
+          "[reference][rest][!shouldfail]") {
+  check_look_independent_of_settings(Simulator::SimModel::kFollowTheLeader);
 }
