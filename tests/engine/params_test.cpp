@@ -38,7 +38,8 @@ TEST_CASE("params: defaults, every section read, and a saved file reads back the
 
   const Params p = parse_params(R"({"tressvk_params": 1,
     "simulation": {"damping": 0.2, "local_iterations": 4, "vsp_coefficient": 0.5},
-    "settings": {"gravity": [0, -5, 0], "step_rate": 120, "max_steps_per_frame": 4, "max_steps_sustained": 6},
+    "settings": {"gravity": [0, -5, 0], "step_rate": 120, "max_steps_per_frame": 4, "max_steps_sustained": 6,
+                 "model": "conservative"},
     "material": {"base_color": [0.2, 0.1, 0.05], "strand_width": 0.0004, "tip_width_ratio": 0.1},
     "wind": {"direction": [0, 0, -1], "strength": 3},
     "lod": {"start_distance": 2, "end_distance": 6, "min_fraction": 0.3}})", "p.json");
@@ -50,6 +51,8 @@ TEST_CASE("params: defaults, every section read, and a saved file reads back the
   CHECK(p.settings.time.step_rate == 120.0f);
   CHECK(p.settings.time.max_steps_per_frame == 4);
   CHECK(p.settings.time.max_steps_sustained == 6);
+  CHECK(p.settings.model == TVK_SIM_MODEL_CONSERVATIVE);
+  CHECK(empty.settings.model == TVK_SIM_MODEL_DEFAULT);
   CHECK(p.material.base_color[2] == 0.05f);
   CHECK(p.has_strand_width);
   CHECK(p.material.strand_width == 0.0004f);
@@ -77,6 +80,8 @@ TEST_CASE("params: a broken file names the file and the field, or the line and c
   CHECK(contains(error_of(R"({"simulation": {"global_stiffness": 2}})"), "simulation.global_stiffness: 2 is outside 0..1"));
   CHECK(contains(error_of(R"({"simulation": {"local_iterations": 1.5}})"), "simulation.local_iterations: expected a whole number"));
   CHECK(contains(error_of(R"({"settings": {"gravity": [0, 1]}})"), "settings.gravity: expected an array of 3 numbers"));
+  CHECK(contains(error_of(R"({"settings": {"model": "ftl"}})"),
+                 "settings.model: expected one of default, follow-the-leader, conservative, compliant, got \"ftl\""));
   CHECK(contains(error_of(R"({"lod": {"start_distance": 5, "end_distance": 2}})"), "lod.end_distance: must be greater"));
   CHECK(contains(error_of(R"({"tressvk_params": 2})"), "tressvk_params: this build reads version 1"));
   CHECK(contains(error_of("[1, 2]"), "expected an object"));

@@ -112,6 +112,7 @@ TEST_CASE("tressvk_create_instance with bad settings leaks nothing and does not 
       {"time.max_steps_sustained",
        [](TvkSimSettings& s, TvkSimParams&) { s.time.max_steps_sustained = TVK_MAX_STEPS_PER_FRAME + 1; }},
       {"gravity", [](TvkSimSettings& s, TvkSimParams&) { s.gravity[1] = std::numeric_limits<float>::infinity(); }},
+      {"model", [](TvkSimSettings& s, TvkSimParams&) { s.model = static_cast<TvkSimModel>(7); }},
       {"local_stiffness", [](TvkSimSettings&, TvkSimParams& p) { p.local_stiffness = 2.0f; }},
   };
   for (const Case& c : cases) {

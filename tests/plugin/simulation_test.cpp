@@ -236,6 +236,64 @@ TEST_CASE("curly strands of 32 vertices match the reference through shake", "[pl
   check_scene(r);
 }
 
+// TvkSimSettings::model picks the model per instance, whatever TRESSVK_SIM_MODEL says (the variable only decides
+// TVK_SIM_MODEL_DEFAULT): each model's kernel runs, is named in the recorded pass, and matches the reference built with
+// the same settings. Strands of 8 vertices fit lavapipe's 8-lane subgroups (the lane kernels' subgroup variants).
+TEST_CASE("the model named in an instance's settings runs on the GPU and in the reference", "[plugin][simulation]") {
+  baker::BuiltinGroomOptions options;
+  options.guide_count = 16;
+  options.vertices_per_strand = 8;
+  const asset::HairAsset hair = baker::make_builtin_groom("curly", options);
+  struct Case { TvkSimModel model; reference::Simulator::SimModel reference; const char* pass; bool lanes; };
+  for (const Case& c : {Case{TVK_SIM_MODEL_FOLLOW_THE_LEADER, reference::Simulator::SimModel::kFollowTheLeader, "frame", false},
+                        Case{TVK_SIM_MODEL_CONSERVATIVE, reference::Simulator::SimModel::kConservative, "conservative", true},
+                        Case{TVK_SIM_MODEL_COMPLIANT, reference::Simulator::SimModel::kCompliant, "frame(lanes", true}}) {
+    TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
+    settings.model = c.model;
+    CHECK(reference::Simulator(hair, default_params(hair), settings).model() == c.reference);
+    const SceneResult r = run_scene(hair, "shake", 6, {}, settings);
+    INFO("model " << static_cast<int>(c.model) << ": passes " << r.passes.front() << ", step error "
+                  << r.step_error_max);
+    CHECK(r.passes.size() == 1);
+    CHECK(has_pass_containing(r.passes, c.pass));
+    CHECK(has_pass_containing(r.passes, "lanes") == c.lanes);
+    if (c.model == TVK_SIM_MODEL_COMPLIANT) CHECK_FALSE(has_pass_containing(r.passes, "conservative"));
+    check_scene(r);
+  }
+}
+
+// A host may change the model between frames (tressvk_set_sim_settings): the state carries over and the next frame
+// runs the new model's kernel, matching the reference switched at the same frame.
+TEST_CASE("an instance changes model between frames and keeps matching the reference", "[plugin][simulation]") {
+  baker::BuiltinGroomOptions options;
+  options.guide_count = 16;
+  options.vertices_per_strand = 8;
+  const asset::HairAsset hair = baker::make_builtin_groom("curly", options);
+  TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
+  settings.model = TVK_SIM_MODEL_FOLLOW_THE_LEADER;
+  side_by_side(hair, default_params(hair), settings, [&](test::GpuInstance& gpu, reference::Simulator& ref,
+                                                         const reference::SceneGeometry& geo) {
+    const double median = ref.median_strand_length();
+    for (uint32_t f = 0; f < 8; ++f) {
+      if (f == 4) {
+        settings.model = TVK_SIM_MODEL_CONSERVATIVE;
+        REQUIRE(tressvk_set_sim_settings(gpu.handle(), &settings) == TVK_SUCCESS);
+        ref.set_model(reference::Simulator::SimModel::kConservative);
+      }
+      const TvkSimFrame frame = reference::scene_frame("shake", f, geo);
+      if (f > 0) ref.set_state(gpu.state().pos, gpu.state().prev, gpu.state().prevprev);
+      ref.advance(frame);
+      gpu.run_frame(frame);
+      const double err =
+          reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(), median).max_rel;
+      const std::vector<std::string> passes = gpu.recorded_passes();
+      INFO("frame " << f << ": " << passes.front() << ", step error " << err);
+      CHECK(err <= kStepErrorBound);
+      CHECK(has_pass_containing(passes, "conservative") == (f >= 4));
+    }
+  });
+}
+
 TEST_CASE("passes are recorded only for what the scene uses", "[plugin][simulation]") {
   const asset::HairAsset hair = test::small_groom("straight", 16);
   SECTION("settle: no wind, collision or follow pass") {

@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include "params.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -23,6 +25,10 @@ void add_simulation_options(CLI::App& subcommand, TvkSimParams& params, TvkSimSe
   subcommand.add_option("--step-rate", settings.time.step_rate, "simulation steps per second")->capture_default_str();
   subcommand.add_option("--local-iterations", params.local_iterations)->capture_default_str();
   subcommand.add_option("--length-iterations", params.length_iterations)->capture_default_str();
+  subcommand.add_option("--model", settings.model,
+                        "the strand model: default (follow-the-leader, or TRESSVK_SIM_MODEL), follow-the-leader, "
+                        "conservative, compliant")
+      ->transform(CLI::CheckedTransformer(demo::sim_model_names()));
   subcommand.add_option("--sleep-below", settings.sleep_below,
                         "a still groom's guides sleep below this move per step (fraction of the median strand length; 0 = never)")
       ->capture_default_str();

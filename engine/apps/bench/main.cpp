@@ -48,7 +48,7 @@ nlohmann::json to_json(const bench::CompareResult& r, const bench::CompareOption
       {"guide_vertices", r.guide_vertices},
       {"rendered_vertices", r.rendered_vertices},
       {"median_strand_length_m", r.median_strand_length_m},
-      {"settings", {{"step_rate_hz", o.settings.time.step_rate}, {"max_steps_per_frame", o.settings.time.max_steps_per_frame},
+      {"settings", {{"model", demo::resolved_sim_model_name(o.settings.model)}, {"step_rate_hz", o.settings.time.step_rate}, {"max_steps_per_frame", o.settings.time.max_steps_per_frame},
                     {"max_steps_sustained", o.settings.time.max_steps_sustained},
                     {"frame_dt_s", reference::kSceneFrameDt}, {"local_iterations", o.params.local_iterations},
                     {"length_iterations", o.params.length_iterations}, {"local_stiffness", o.params.local_stiffness},
@@ -170,6 +170,7 @@ int main(int argc, char** argv) {
       o.params = file.simulation;
       o.settings = file.settings;
       if (compare->count("--step-rate")) o.settings.time.step_rate = given.settings.time.step_rate;
+      if (compare->count("--model")) o.settings.model = given.settings.model;
       if (compare->count("--local-iterations")) o.params.local_iterations = given.params.local_iterations;
       if (compare->count("--length-iterations")) o.params.length_iterations = given.params.length_iterations;
     } catch (const demo::ParamsError& e) {

@@ -120,6 +120,7 @@ int execute_perf_command(const PerfCommand& given) {
       cmd.params = file.simulation;
       cmd.settings = file.settings;
       if (cmd.app->count("--step-rate")) cmd.settings.time.step_rate = given.settings.time.step_rate;
+      if (cmd.app->count("--model")) cmd.settings.model = given.settings.model;
       if (cmd.app->count("--local-iterations")) cmd.params.local_iterations = given.params.local_iterations;
       if (cmd.app->count("--length-iterations")) cmd.params.length_iterations = given.params.length_iterations;
     } catch (const demo::ParamsError& e) {

@@ -1,6 +1,7 @@
 #include "params.hpp"
 
 #include <tressvk/asset_io.hpp>
+#include <tressvk/model/planner.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -100,6 +101,12 @@ Params parse_params(std::string_view text, std::string_view name) {
     {"max_steps_per_frame", [&](const json& v, const std::string& f) { st.time.max_steps_per_frame = r.count(v, f, 1, TVK_MAX_STEPS_PER_FRAME); }},
     {"max_steps_sustained", [&](const json& v, const std::string& f) { st.time.max_steps_sustained = r.count(v, f, 0, TVK_MAX_STEPS_PER_FRAME); }},
     {"sleep_below", [&](const json& v, const std::string& f) { st.sleep_below = r.number(v, f, 0, 1e-3); }},
+    {"model", [&](const json& v, const std::string& f) {
+       const auto& names = sim_model_names();
+       const auto it = v.is_string() ? names.find(v.get<std::string>()) : names.end();
+       if (it == names.end()) r.fail(f, "expected one of default, follow-the-leader, conservative, compliant, got " + v.dump());
+       st.model = it->second;
+     }},
   });
   TvkHairMaterial& m = p.material;
   r.section(root, "material", {
@@ -157,6 +164,29 @@ double shortest(float f) {
   return std::strtod(buf, nullptr);
 }
 
+const std::map<std::string, TvkSimModel>& sim_model_names() {
+  static const std::map<std::string, TvkSimModel> names{{"default", TVK_SIM_MODEL_DEFAULT},
+                                                         {"follow-the-leader", TVK_SIM_MODEL_FOLLOW_THE_LEADER},
+                                                         {"conservative", TVK_SIM_MODEL_CONSERVATIVE},
+                                                         {"compliant", TVK_SIM_MODEL_COMPLIANT}};
+  return names;
+}
+
+std::string sim_model_name(TvkSimModel model) {
+  for (const auto& [name, m] : sim_model_names())
+    if (m == model) return name;
+  return "default";
+}
+
+std::string resolved_sim_model_name(TvkSimModel model) {
+  switch (model::resolve_model(model)) {
+    case model::StrandModel::kConservative: return "conservative";
+    case model::StrandModel::kCompliant: return "compliant";
+    case model::StrandModel::kFollowTheLeader: break;
+  }
+  return "follow-the-leader";
+}
+
 std::string params_json(const Params& p) {
   auto v3 = [](const float* a) { return ordered_json::array({shortest(a[0]), shortest(a[1]), shortest(a[2])}); };
   const TvkSimParams& s = p.simulation;
@@ -172,7 +202,7 @@ std::string params_json(const Params& p) {
   j["settings"] = {{"gravity", v3(p.settings.gravity)}, {"step_rate", shortest(p.settings.time.step_rate)},
                    {"max_steps_per_frame", p.settings.time.max_steps_per_frame},
                    {"max_steps_sustained", p.settings.time.max_steps_sustained},
-                   {"sleep_below", shortest(p.settings.sleep_below)}};
+                   {"sleep_below", shortest(p.settings.sleep_below)}, {"model", sim_model_name(p.settings.model)}};
   j["material"] = {{"base_color", v3(m.base_color)}, {"tip_color", v3(m.tip_color)}, {"kd", shortest(m.kd)}, {"ks1", shortest(m.ks1)},
                    {"ex1", shortest(m.ex1)}, {"ks2", shortest(m.ks2)}, {"ex2", shortest(m.ex2)}, {"shift1", shortest(m.shift1)}, {"shift2", shortest(m.shift2)},
                    {"strand_width", shortest(m.strand_width)}, {"tip_width_ratio", shortest(m.tip_width_ratio)},

@@ -3,7 +3,8 @@
 //
 //   { "tressvk_params": 1,
 //     "simulation": { "damping": 0.08, "global_stiffness": 0.15, ... every TvkSimParams field },
-//     "settings":   { "gravity": [0, -9.81, 0], "step_rate": 240, "max_steps_per_frame": 8, "max_steps_sustained": 16 },
+//     "settings":   { "gravity": [0, -9.81, 0], "step_rate": 240, "max_steps_per_frame": 8, "max_steps_sustained": 16,
+//                     "sleep_below": 1e-6, "model": "default" },
 //     "material":   { "base_color": [r, g, b], "tip_color": [r, g, b], "kd": 0.7, ... every TvkHairMaterial field },
 //     "wind":       { "direction": [1, 0, 0], "strength": 0, "gust_amplitude": 0.5, "gust_frequency": 0.5,
 //                     "cone_angle": 0.35 },
@@ -17,6 +18,7 @@
 #include <tressvk/tressvk.h>
 
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -37,6 +39,13 @@ struct Params {
   // Which parts the file set (a host keeps its own choice for the others).
   bool has_strand_width = false, has_tip_width_ratio = false, has_wind = false, has_lod = false;
 };
+
+// The names of TvkSimModel in the parameter file ("settings": { "model": ... }) and the tools' --model: default,
+// follow-the-leader, conservative, compliant.
+const std::map<std::string, TvkSimModel>& sim_model_names();
+std::string sim_model_name(TvkSimModel model);
+// The model an instance with this setting runs (TVK_SIM_MODEL_DEFAULT resolved through TRESSVK_SIM_MODEL), by name.
+std::string resolved_sim_model_name(TvkSimModel model);
 
 // Throws ParamsError naming `name` (and the field, or the line and column).
 Params parse_params(std::string_view text, std::string_view name);

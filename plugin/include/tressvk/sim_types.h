@@ -157,6 +157,25 @@ typedef struct TvkSimFrame {
   { 0.0f, TVK_INSTANCE_TRANSFORM_DEFAULT_INIT, 0, 0u, 0u, 0u, 0u,                                   \
     { { { 0.0f, 0.0f, 0.0f }, 0.0f, { 0.0f, 0.0f, 0.0f }, 0.0f } }, TVK_WIND_DEFAULT_INIT }
 
+/* The strand model an instance runs (docs/accuracy.md, "Which model, at which rate" and "What to choose today").
+ * Every model keeps the same state, so an instance may change model between frames; the new model's GPU kernel is
+ * built on its first frame unless tressvk_prewarm_instance ran after the change. */
+typedef enum TvkSimModel {
+  TVK_SIM_MODEL_DEFAULT = 0,           /* follow-the-leader, unless the TRESSVK_SIM_MODEL environment variable names
+                                          another model (follow-the-leader, conservative, compliant): a switch for
+                                          test and benchmark runs, read once per process */
+  TVK_SIM_MODEL_FOLLOW_THE_LEADER = 1, /* TressFX's model: local shape and lengths as serial sweeps along the strand.
+                                          Its stiffness is a fraction per step and per iteration, so the look changes
+                                          with the step rate and the iteration count */
+  TVK_SIM_MODEL_CONSERVATIVE = 2,      /* shape and lengths as compliant constraints solved along the whole strand:
+                                          the look stays the same across step rates and iteration counts, and hair at
+                                          rest comes to rest; recommended at 120 Hz with 1 local iteration for
+                                          strands of up to 64 vertices, 240 Hz for longer ones */
+  TVK_SIM_MODEL_COMPLIANT = 3,         /* the conservative model's constraints with targets held while it solves:
+                                          faster, but curly hair never comes to rest */
+  TVK_SIM_MODEL_MAX_ENUM = 0x7FFFFFFF  /* keeps the enum 32 bits wide; not a model */
+} TvkSimModel;
+
 /* Per instance, fixed for the instance's life (changing them is allowed between frames). */
 typedef struct TvkSimSettings {
   float gravity[3];              /* m/s^2, world. Default (0, -9.81, 0) */
@@ -167,9 +186,10 @@ typedef struct TvkSimSettings {
                                     step through 3 frames in a row sleeps: it costs almost nothing and keeps its state
                                     until a frame is not still. A groom at rest under a still head then costs far
                                     less than a moving one. 0 = never sleep. Default 1e-6 */
+  TvkSimModel model;             /* Default TVK_SIM_MODEL_DEFAULT (follow-the-leader) */
 } TvkSimSettings;
 
-#define TVK_SIM_SETTINGS_DEFAULT_INIT { { 0.0f, -9.81f, 0.0f }, TVK_TIME_SETTINGS_DEFAULT_INIT, 1e-6f }
+#define TVK_SIM_SETTINGS_DEFAULT_INIT { { 0.0f, -9.81f, 0.0f }, TVK_TIME_SETTINGS_DEFAULT_INIT, 1e-6f, TVK_SIM_MODEL_DEFAULT }
 
 #ifdef __cplusplus
 }

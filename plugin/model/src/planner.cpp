@@ -111,6 +111,9 @@ void FramePlanner::set_settings(const TvkSimSettings& settings) {
   for (float g : settings.gravity) require(std::isfinite(g), "gravity is not finite");
   require(std::isfinite(settings.sleep_below) && settings.sleep_below >= 0.0f && settings.sleep_below <= 1e-3f,
           "sleep_below must be within 0..1e-3 (a fraction of the median strand length per step)");
+  require(settings.model == TVK_SIM_MODEL_DEFAULT || settings.model == TVK_SIM_MODEL_FOLLOW_THE_LEADER ||
+              settings.model == TVK_SIM_MODEL_CONSERVATIVE || settings.model == TVK_SIM_MODEL_COMPLIANT,
+          "model must be a TvkSimModel (0 default, 1 follow-the-leader, 2 conservative, 3 compliant)");
   settings_ = settings;
   h_ = 1.0 / static_cast<double>(settings.time.step_rate);
 }
@@ -512,20 +515,20 @@ constexpr double kBendCalibration = 5.4;
 constexpr double kBendDampingTime = 0.005;
 }  // namespace
 
-bool compliant_model_from_environment() {
-  static const bool compliant = [] {
+StrandModel resolve_model(TvkSimModel model) {
+  switch (model) {
+    case TVK_SIM_MODEL_FOLLOW_THE_LEADER: return StrandModel::kFollowTheLeader;
+    case TVK_SIM_MODEL_CONSERVATIVE: return StrandModel::kConservative;
+    case TVK_SIM_MODEL_COMPLIANT: return StrandModel::kCompliant;
+    default: break;
+  }
+  static const StrandModel from_environment = [] {
     const char* v = std::getenv("TRESSVK_SIM_MODEL");
-    return v != nullptr && (std::string_view(v) == "compliant" || std::string_view(v) == "conservative");
+    if (v != nullptr && std::string_view(v) == "compliant") return StrandModel::kCompliant;
+    if (v != nullptr && std::string_view(v) == "conservative") return StrandModel::kConservative;
+    return StrandModel::kFollowTheLeader;
   }();
-  return compliant;
-}
-
-bool conservative_model_from_environment() {
-  static const bool conservative = [] {
-    const char* v = std::getenv("TRESSVK_SIM_MODEL");
-    return v != nullptr && std::string_view(v) == "conservative";
-  }();
-  return conservative;
+  return from_environment;
 }
 
 double compliant_global_fraction(double s, double h) {

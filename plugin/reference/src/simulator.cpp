@@ -13,8 +13,11 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
     : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
   asset_inv_mass_ = rest_.inv_mass;
   set_params(group_params);
-  if (compliant_model_from_environment())
-    length_model_ = conservative_model_from_environment() ? LengthModel::kConservative : LengthModel::kCompliant;
+  switch (resolve_model(settings.model)) {
+    case StrandModel::kCompliant: length_model_ = LengthModel::kCompliant; break;
+    case StrandModel::kConservative: length_model_ = LengthModel::kConservative; break;
+    case StrandModel::kFollowTheLeader: break;
+  }
   const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
   pos_.assign(n_all, Vec3{});
   tangent_.assign(n_all, Vec3{});

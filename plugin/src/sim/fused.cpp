@@ -143,13 +143,14 @@ uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size
   return slots;
 }
 
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup) {
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative) {
   PassUse use = frame_pass_use(terms, false);
   use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
   use.features |= kLanesVariantBit;
   if (subgroup) use.features |= kSharedVariantBit;  // keeps the two lane variants' pipelines apart
-  if (model::conservative_model_from_environment()) use.features |= kFeatureConservative;
-  use.name = (subgroup ? "frame(lanes,subgroup)" : "frame(lanes)") + use.name.substr(5);
+  if (conservative) use.features |= kFeatureConservative;
+  use.name = std::string(subgroup ? "frame(lanes,subgroup" : "frame(lanes") + (conservative ? ",conservative)" : ")") +
+             use.name.substr(5);
   return use;
 }
 
@@ -203,17 +204,18 @@ uint32_t strand_lanes(const PassInfo* info, uint32_t vertices_per_strand) {
 }  // namespace
 
 uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size,
-                               uint32_t conservative_slots) {
-  if (info == &kFrameLanesSubgroup && model::conservative_model_from_environment())
+                               uint32_t conservative_slots, bool conservative) {
+  if (info == &kFrameLanesSubgroup && conservative)
     return conservative_slots * lanes_for(vertices_per_strand, 1);
   if (is_subgroup_lanes(info)) return std::max(subgroup_size, kLanesSubgroupWorkgroup);
   return lanes_for(vertices_per_strand, 32);
 }
 
 uint32_t frame_lanes_groups(const PassInfo* info, uint32_t guide_count, uint32_t vertices_per_strand,
-                            uint32_t subgroup_size, uint32_t conservative_slots) {
+                            uint32_t subgroup_size, uint32_t conservative_slots, bool conservative) {
   if (!is_subgroup_lanes(info)) return guide_count;
-  const uint32_t per_group = frame_lanes_workgroup(info, vertices_per_strand, subgroup_size, conservative_slots) /
+  const uint32_t per_group =
+      frame_lanes_workgroup(info, vertices_per_strand, subgroup_size, conservative_slots, conservative) /
                              strand_lanes(info, vertices_per_strand);
   return (guide_count + per_group - 1) / per_group;
 }

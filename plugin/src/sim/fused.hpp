@@ -45,13 +45,14 @@ enum class LanesBackend { kAuto, kShared };
 LanesBackend lanes_backend_from_environment();
 // The power of two >= N fits the subgroup, and compute shaders may shuffle and vote.
 bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bool shuffle_compute);
-// With the conservative local shape (TRESSVK_SIM_MODEL=conservative) the subgroup variant keeps its strands' systems
+// With the conservative local shape (TVK_SIM_MODEL_CONSERVATIVE) the subgroup variant keeps its strands' systems
 // in shared memory: the strands a workgroup (whole subgroups, at most 384 invocations) that the device's limits allow
 // (maxComputeWorkGroupInvocations, the lesser of it and maxComputeWorkGroupSize[0]; maxComputeSharedMemorySize), 0
 // where not one subgroup's worth fits (the shared variant then).
 uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size, uint32_t max_invocations,
                             uint32_t max_shared_bytes);
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup);
+// conservative: the conservative local shape (kFeatureConservative, its own pipelines), else the compliant model's.
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative);
 bool is_frame_lanes(const PassInfo* info);
 
 // The follow-the-leader model's run kernel (frame_runs.glsl): each lane holds a run of 4 or 8 consecutive vertices
@@ -70,11 +71,11 @@ PassUse frame_runs_pass_use(const SceneTerms& terms, uint32_t run_length);
 // RUN of the frame pass (4 or 8), 0 for any other pass.
 uint32_t frame_run_length(const PassInfo* info);
 // Its workgroup size (WORKGROUP_SIZE): shared, the power of two >= N, at least 32; subgroup, whole subgroups, at
-// least 64 invocations (with the conservative local shape, conservative_slots strands). And its workgroups for G
-// guides.
+// least 64 invocations (with the conservative local shape, `conservative`, conservative_slots strands). And its
+// workgroups for G guides.
 uint32_t frame_lanes_workgroup(const PassInfo* info, uint32_t vertices_per_strand, uint32_t subgroup_size,
-                               uint32_t conservative_slots);
+                               uint32_t conservative_slots, bool conservative);
 uint32_t frame_lanes_groups(const PassInfo* info, uint32_t guide_count, uint32_t vertices_per_strand,
-                            uint32_t subgroup_size, uint32_t conservative_slots);
+                            uint32_t subgroup_size, uint32_t conservative_slots, bool conservative);
 
 }  // namespace tressvk::sim

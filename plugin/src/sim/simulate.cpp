@@ -132,9 +132,10 @@ TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k,
                               "vkCreateShaderModule");
       r != TVK_SUCCESS)
     return r;
-  const uint32_t wg = sim::is_frame_lanes(use.info) ? sim::frame_lanes_workgroup(use.info, n, ctx.subgroup_size,
-                                                                                 conservative_slots(ctx, n))
-                                                     : ctx.workgroup_size;
+  const uint32_t wg = sim::is_frame_lanes(use.info)
+                         ? sim::frame_lanes_workgroup(use.info, n, ctx.subgroup_size, conservative_slots(ctx, n),
+                                                      (use.features & sim::kFeatureConservative) != 0)
+                         : ctx.workgroup_size;
   // Constant 5: the run kernel's RUN (other shaders have no constant 5, which Vulkan allows).
   const std::array<uint32_t, 6> values = {wg, n, k, use.features, use.capsule_count, sim::frame_run_length(use.info)};
   std::array<VkSpecializationMapEntry, 6> entries{};
@@ -253,13 +254,16 @@ bool still_and_keep(const std::vector<sim::GroupParams>& groups, const model::Gp
 std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
   // The conservative local shape keeps its systems in shared memory: the subgroup variant only where a workgroup of
   // at least one subgroup's strands and their systems fit the device (conservative_slots).
-  if (model::compliant_model_from_environment()) {
+  const model::StrandModel strand_model = model::resolve_model(inst.settings.model);
+  if (model::is_compliant_family(strand_model)) {
     const uint32_t n = inst.asset->rest.vertices_per_strand;
+    const bool conservative = strand_model == model::StrandModel::kConservative;
     return {sim::frame_lanes_pass_use(
-        terms, sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
-                   sim::lanes_fit_subgroup(n, ctx.subgroup_size_min, ctx.subgroup_shuffle_compute) &&
-                   (!model::conservative_model_from_environment() ||
-                    conservative_slots(ctx, n) > 0))};
+        terms,
+        sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
+            sim::lanes_fit_subgroup(n, ctx.subgroup_size_min, ctx.subgroup_shuffle_compute) &&
+            (!conservative || conservative_slots(ctx, n) > 0),
+        conservative)};
   }
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
@@ -293,10 +297,11 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   auto* ring = static_cast<std::byte*>(inst.ring.mapped);
   const double h = inst.planner->step_length();
   std::vector<sim::GroupParams> groups(inst.params.size());
+  const bool compliant = model::is_compliant_family(model::resolve_model(inst.settings.model));
   for (size_t g = 0; g < inst.params.size(); ++g) {
     const model::GroupStep step = model::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation,
                                                             inst.asset->rest.median_length);
-    groups[g] = model::compliant_model_from_environment() ? model::to_gpu_compliant(step, h) : model::to_gpu(step);
+    groups[g] = compliant ? model::to_gpu_compliant(step, h) : model::to_gpu(step);
     std::memcpy(ring + base + inst.groups_offset + g * sizeof(sim::GroupParams), &groups[g], sizeof(sim::GroupParams));
   }
   // Still or not: every step of this frame against the last step run (a frame without steps leaves that as it was).
@@ -497,7 +502,8 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
       const uint32_t groups = sim::is_frame_lanes(u->info)
                                   ? sim::frame_lanes_groups(u->info, rest.guide_count, rest.vertices_per_strand,
                                                             ctx.subgroup_size,
-                                                            conservative_slots(ctx, rest.vertices_per_strand))
+                                                            conservative_slots(ctx, rest.vertices_per_strand),
+                                                            (u->features & sim::kFeatureConservative) != 0)
                               : fused                       ? sim::frame_dispatch_groups(rest.guide_count)
                                     : sim::dispatch_groups(u->info->granularity, rest.guide_count,
                                                            rest.vertices_per_strand, rest.follow_per_guide,

@@ -164,14 +164,17 @@ struct GpuFrame {
 GpuFrame to_gpu(const FramePlan& plan);
 sim::GroupParams to_gpu(const GroupStep& group);
 
-// ---- The compliant model (the reference's SimModel::kCompliant; docs/accuracy.md, "The compliant model") ----------
-// TRESSVK_SIM_MODEL=compliant selects it in the plugin (the lane-parallel frame kernel, shaders/sim/frame_lanes.comp)
-// and as the reference Simulator's default, so that every simulation test compares like with like. Read once.
-bool compliant_model_from_environment();
-// TRESSVK_SIM_MODEL=conservative: the compliant model with the conservative local shape (the reference's
-// LengthModel::kConservative; the lane kernel's conservative variant, lanes_compliant.glsl). compliant_model_from_
-// environment() is true for it too (the same uploads and length solve). Read once.
-bool conservative_model_from_environment();
+// ---- The strand models (TvkSimSettings::model; the reference's SimModel) -------------------------------------------
+// The compliant model (docs/accuracy.md, "The compliant model") runs on the lane-parallel frame kernel
+// (shaders/sim/frame_lanes.comp); the conservative model is the compliant model with the conservative local shape
+// (the reference's LengthModel::kConservative; the lane kernel's conservative variant, lanes_compliant.glsl), and
+// shares its uploads and length solve.
+enum class StrandModel { kFollowTheLeader, kCompliant, kConservative };
+// The model an instance (or a reference Simulator) with these settings runs: TvkSimSettings::model, where that is
+// TVK_SIM_MODEL_DEFAULT the TRESSVK_SIM_MODEL environment variable's model (read once per process; follow-the-leader
+// when unset), so that a test run with the variable set compares like with like on the GPU and the reference.
+StrandModel resolve_model(TvkSimModel model);
+inline bool is_compliant_family(StrandModel m) { return m != StrandModel::kFollowTheLeader; }
 // kConservative's compliance per edge: compliant_bend_alpha_base x this x (31 a / L)^4; its damping time: the
 // compliant model's per-edge time x kConservativeDampingScale (reference simulator.cpp, lanes_compliant.glsl).
 inline constexpr double kConservativeCalibration = 0.080;
