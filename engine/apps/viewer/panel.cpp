@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
 
 namespace tressvk::viewer {
 
@@ -91,6 +92,33 @@ void Panel::build(demo::DemoApp& app, const demo::FrameReport& frame, Window& wi
   demo::Params& p = app.tuning();
   bool changed = false;
   if (ImGui::CollapsingHeader("Simulation", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The model, the step rate and the iteration count: follow-the-leader's look changes with the last two, the
+    // conservative model's does not (docs/accuracy.md, "The settled look against the settings").
+    static const char* const kModels[] = {"follow-the-leader", "conservative", "compliant"};
+    static const TvkSimModel kModelValues[] = {TVK_SIM_MODEL_FOLLOW_THE_LEADER, TVK_SIM_MODEL_CONSERVATIVE,
+                                               TVK_SIM_MODEL_COMPLIANT};
+    const std::string current = demo::resolved_sim_model_name(p.settings.model);
+    int model = 0;
+    for (int i = 0; i < 3; ++i)
+      if (current == kModels[i]) model = i;
+    if (ImGui::Combo("model", &model, kModels, 3)) {
+      p.settings.model = kModelValues[model];
+      changed = true;
+    }
+    static const char* const kRates[] = {"60 Hz", "120 Hz", "240 Hz", "480 Hz"};
+    static const float kRateValues[] = {60.0f, 120.0f, 240.0f, 480.0f};
+    int rate = 2;
+    for (int i = 0; i < 4; ++i)
+      if (p.settings.time.step_rate == kRateValues[i]) rate = i;
+    if (ImGui::Combo("step rate", &rate, kRates, 4)) {
+      p.settings.time.step_rate = kRateValues[rate];
+      changed = true;
+    }
+    int iterations = static_cast<int>(p.simulation.local_iterations);
+    if (ImGui::SliderInt("local iterations", &iterations, 1, 8)) {
+      p.simulation.local_iterations = static_cast<uint32_t>(iterations);
+      changed = true;
+    }
     changed |= ImGui::SliderFloat("damping", &p.simulation.damping, 0.0f, 1.0f);
     changed |= ImGui::SliderFloat("global stiffness", &p.simulation.global_stiffness, 0.0f, 1.0f);
     changed |= ImGui::SliderFloat("global range", &p.simulation.global_range, 0.0f, 1.0f);
