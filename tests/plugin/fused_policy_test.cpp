@@ -5,6 +5,7 @@
 
 #include "sim/fused.hpp"
 
+using tressvk::sim::crowd_prefers_one_thread;
 using tressvk::sim::lanes_fit_subgroup;
 using tressvk::sim::run_length_for;
 using tressvk::sim::runs_fit_subgroup;
@@ -18,6 +19,18 @@ TEST_CASE("the default path takes runs of 4, then of 8, then the one-thread kern
   CHECK(run_length_for(32768, 32, true) == 0);   // 1 M guide vertices: the one-thread kernel
   CHECK(run_length_for(32768, 32, false) == 8);  // TRESSVK_SIM_PATH=runs: never falls back
   CHECK(run_length_for(65536, 8, true) == 8);    // the bounds count guide vertices
+}
+
+TEST_CASE("a crowd at 3 or more steps a frame prefers the one-thread kernel from 8 instances and 512 k guide vertices",
+          "[plugin][simulation]") {
+  constexpr uint64_t kRatboy = 2221 * 32;
+  CHECK(crowd_prefers_one_thread(8, 8 * kRatboy, 4));          // measured: 386 against 460 us at 240 Hz
+  CHECK(crowd_prefers_one_thread(64, 64 * kRatboy, 4));        // 2,353 against 3,212
+  CHECK(crowd_prefers_one_thread(32, 32 * 512 * 32, 4));       // curly 512 guides: 298 against 415
+  CHECK_FALSE(crowd_prefers_one_thread(8, 8 * 512 * 32, 4));   // 131 k: runs of 4, 134 against 204
+  CHECK_FALSE(crowd_prefers_one_thread(4, 4 * kRatboy, 4));    // 280 against 301: the runs
+  CHECK_FALSE(crowd_prefers_one_thread(64, 64 * kRatboy, 1));  // 60 Hz: the runs stay ahead
+  CHECK_FALSE(crowd_prefers_one_thread(1, 600 * 1024, 4));     // one groom: run_length_for decides
 }
 
 TEST_CASE("a strand fits the subgroup when its lanes do", "[plugin][simulation]") {

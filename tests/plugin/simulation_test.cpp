@@ -18,6 +18,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <string>
 
 using namespace tressvk;
@@ -236,14 +238,21 @@ TEST_CASE("curly strands of 32 vertices match the reference through shake", "[pl
   check_scene(r);
 }
 
-// TvkSimSettings::model picks the model per instance, whatever TRESSVK_SIM_MODEL says (the variable only decides
-// TVK_SIM_MODEL_DEFAULT): each model's kernel runs, is named in the recorded pass, and matches the reference built with
-// the same settings. Strands of 8 vertices fit lavapipe's 8-lane subgroups (the lane kernels' subgroup variants).
-TEST_CASE("the model named in an instance's settings runs on the GPU and in the reference", "[plugin][simulation]") {
+// 16 curly guides of 8 vertices: they fit lavapipe's 8-lane subgroups, so the lane kernels run their subgroup variants.
+namespace {
+asset::HairAsset curly_of_8_vertices() {
   baker::BuiltinGroomOptions options;
   options.guide_count = 16;
   options.vertices_per_strand = 8;
-  const asset::HairAsset hair = baker::make_builtin_groom("curly", options);
+  return baker::make_builtin_groom("curly", options);
+}
+}  // namespace
+
+// TvkSimSettings::model picks the model per instance, whatever TRESSVK_SIM_MODEL says (the variable only decides
+// TVK_SIM_MODEL_DEFAULT): each model's kernel runs, is named in the recorded pass, and matches the reference built with
+// the same settings.
+TEST_CASE("the model named in an instance's settings runs on the GPU and in the reference", "[plugin][simulation]") {
+  const asset::HairAsset hair = curly_of_8_vertices();
   struct Case { TvkSimModel model; reference::Simulator::SimModel reference; const char* pass; bool lanes; };
   for (const Case& c : {Case{TVK_SIM_MODEL_FOLLOW_THE_LEADER, reference::Simulator::SimModel::kFollowTheLeader, "frame", false},
                         Case{TVK_SIM_MODEL_CONSERVATIVE, reference::Simulator::SimModel::kConservative, "conservative", true},
@@ -265,10 +274,7 @@ TEST_CASE("the model named in an instance's settings runs on the GPU and in the 
 // A host may change the model between frames (tressvk_set_sim_settings): the state carries over and the next frame
 // runs the new model's kernel, matching the reference switched at the same frame.
 TEST_CASE("an instance changes model between frames and keeps matching the reference", "[plugin][simulation]") {
-  baker::BuiltinGroomOptions options;
-  options.guide_count = 16;
-  options.vertices_per_strand = 8;
-  const asset::HairAsset hair = baker::make_builtin_groom("curly", options);
+  const asset::HairAsset hair = curly_of_8_vertices();
   TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
   settings.model = TVK_SIM_MODEL_FOLLOW_THE_LEADER;
   side_by_side(hair, default_params(hair), settings, [&](test::GpuInstance& gpu, reference::Simulator& ref,
@@ -292,6 +298,57 @@ TEST_CASE("an instance changes model between frames and keeps matching the refer
       CHECK(has_pass_containing(passes, "conservative") == (f >= 4));
     }
   });
+}
+
+// A crowd (8 follow-the-leader instances, 512 k guide vertices in one tressvk_cmd_simulate) at 4 steps a frame takes
+// the one-thread kernel where each groom alone takes the runs (sim::crowd_prefers_one_thread, measured on an H100:
+// docs/simulation.md "A crowd"); both kernels do the same arithmetic in the same order, so every instance of the crowd
+// ends each frame bit for bit where the same groom simulated alone does. At one step a frame the runs stay.
+TEST_CASE("a crowd at 4 steps a frame takes the one-thread kernel and keeps every bit", "[plugin][simulation]") {
+  baker::BuiltinGroomOptions options;
+  options.guide_count = 2048;
+  const asset::HairAsset hair = baker::make_builtin_groom("curly", options);
+  constexpr size_t kCrowd = 8;
+  REQUIRE(size_t{hair.guide_count()} * hair.vertices_per_strand * kCrowd >= 512u * 1024u);
+  test::PluginContext ctx = test::create_plugin_context();
+  test::AssetHandle owned(test::load_asset(ctx.get(), hair));
+  const std::vector<TvkSimParams> params = default_params(hair);
+  TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
+  std::vector<std::unique_ptr<test::GpuInstance>> crowd;
+  std::vector<test::GpuInstance*> members;
+  for (size_t i = 0; i < kCrowd; ++i) {
+    crowd.push_back(std::make_unique<test::GpuInstance>(ctx.get(), owned.get(), params, settings));
+    members.push_back(crowd.back().get());
+  }
+  test::GpuInstance alone(ctx.get(), owned.get(), params, settings);
+  const reference::SceneGeometry geometry =
+      reference::scene_geometry(reference::Simulator(hair, params, settings).rest());
+  const auto same_bits = [](const test::GpuState& x, const test::GpuState& y) {
+    return x.pos.size() == y.pos.size() &&
+           std::memcmp(x.pos.data(), y.pos.data(), x.pos.size() * sizeof(x.pos[0])) == 0 &&
+           std::memcmp(x.prev.data(), y.prev.data(), x.prev.size() * sizeof(x.prev[0])) == 0;
+  };
+  for (uint32_t f = 0; f < 4; ++f) {
+    if (f == 3) {  // one step a frame
+      settings.time.step_rate = 60.0f;
+      for (test::GpuInstance* m : members) REQUIRE(tressvk_set_sim_settings(m->handle(), &settings) == TVK_SUCCESS);
+      REQUIRE(tressvk_set_sim_settings(alone.handle(), &settings) == TVK_SUCCESS);
+    }
+    const TvkSimFrame frame = reference::scene_frame("shake", f, geometry);
+    test::run_frame_batched(ctx.get(), members, std::vector<TvkSimFrame>(kCrowd, frame));
+    const std::vector<std::string> crowd_passes = members.front()->recorded_passes();
+    const uint32_t steps = members.front()->stats().steps_last_frame;
+    alone.run_frame(frame);
+    const std::vector<std::string> alone_passes = alone.recorded_passes();
+    INFO("frame " << f << ", " << steps << " steps: crowd " << crowd_passes.front() << ", alone "
+                  << alone_passes.front());
+    CHECK(has_pass_containing(alone_passes, "frame(runs"));  // names are listed once, however many instances ran them
+    if (steps >= 3) CHECK((has_pass_containing(crowd_passes, "frame") && !has_pass_containing(crowd_passes, "runs")));
+    if (steps == 1) CHECK(std::all_of(crowd_passes.begin(), crowd_passes.end(), [](const std::string& p) {
+      return p.find("frame(runs") != std::string::npos;
+    }));
+    for (const test::GpuInstance* m : members) CHECK(same_bits(m->state(), alone.state()));
+  }
 }
 
 TEST_CASE("passes are recorded only for what the scene uses", "[plugin][simulation]") {

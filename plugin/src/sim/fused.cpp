@@ -48,6 +48,16 @@ constexpr uint32_t kRuns4Bit = 1u << 13;
 // (docs/simulation.md). Bounds in guide vertices: a run of 4 up to 160 k, of 8 up to 768 k.
 constexpr uint64_t kRuns4MaxGuideVertices = 160u * 1024u;
 constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
+// A crowd (many instances in one tressvk_cmd_simulate) is not one big groom: each instance is its own dispatch, and
+// from about 512 k guide vertices in 8 or more instances the one-thread kernel beats the runs at 4 or more steps a
+// frame, whatever the groom size chose alone. NVIDIA H100, shake, 240 Hz, us per frame for the whole call, run of 4
+// (each groom's own choice) / run of 8 / one-thread: 8 x curly 512 guides (131 k) 134 / 136 / 204; 32 x 512 (524 k)
+// 415 / 317 / 298; 8 x 2,221 (568 k) 455 / 433 / 331; 32 x 2,221 (2.3 M) 1,620 / 1,277 / 1,035; Ratboy 8 x 460 / 464 /
+// 386, 16 x 847 / 768 / 817, 64 x 3,212 / 2,680 / 2,353; at 60 Hz (one step) the runs stay ahead (docs/simulation.md,
+// "A crowd"). Both kernels give the same floats, so a frame may take either.
+constexpr uint32_t kCrowdMinInstances = 8;
+constexpr uint64_t kCrowdMinGuideVertices = 512u * 1024u;
+constexpr uint32_t kCrowdMinSteps = 3;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
 // With the conservative local shape: as many strands a workgroup as its shared memory holds, up to
@@ -174,6 +184,10 @@ uint32_t run_length_for(uint32_t guide_count, uint32_t vertices_per_strand, bool
   if (work <= kRuns4MaxGuideVertices) return 4;
   if (work <= kRuns8MaxGuideVertices || !fall_back) return 8;
   return 0;
+}
+
+bool crowd_prefers_one_thread(uint32_t instances, uint64_t guide_vertices, uint32_t steps) {
+  return instances >= kCrowdMinInstances && guide_vertices >= kCrowdMinGuideVertices && steps >= kCrowdMinSteps;
 }
 
 PassUse frame_runs_pass_use(const SceneTerms& terms, uint32_t run_length) {

@@ -250,8 +250,10 @@ bool still_and_keep(const std::vector<sim::GroupParams>& groups, const model::Gp
 
 // The passes a frame of this instance records (sim/fused.hpp): the compliant model's lane kernel, or on the process's
 // simulation path (TRESSVK_SIM_PATH) the run kernel, the one-thread kernel (its shared-memory variant only where the
-// strand block fits) or one pass per dispatch.
-std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms) {
+// strand block fits) or one pass per dispatch. crowd: the frame is one of a crowd's (crowd_prefers_one_thread), where
+// the default path takes the one-thread kernel instead of the runs.
+std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& inst, const sim::SceneTerms& terms,
+                                     bool crowd) {
   // The conservative local shape keeps its systems in shared memory: the subgroup variant only where a workgroup of
   // at least one subgroup's strands and their systems fit the device (conservative_slots).
   const model::StrandModel strand_model = model::resolve_model(inst.settings.model);
@@ -269,7 +271,9 @@ std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& in
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);
   // The run kernel (the default up to its measured crossover; strands pinned at their tip take the one-thread
   // kernel, whose Thomas solve is serial).
-  if ((path == sim::SimPath::kAuto || path == sim::SimPath::kRuns) && (terms.features & sim::kFeaturePinnedTips) == 0) {
+  const bool crowd_takes_one_thread = crowd && path == sim::SimPath::kAuto && sim::run_length_from_environment() == 0;
+  if ((path == sim::SimPath::kAuto || path == sim::SimPath::kRuns) && (terms.features & sim::kFeaturePinnedTips) == 0 &&
+      !crowd_takes_one_thread) {
     const uint32_t n = inst.asset->rest.vertices_per_strand;
     uint32_t run = sim::run_length_from_environment();
     if (run == 0) run = sim::run_length_for(inst.asset->rest.guide_count, n, path == sim::SimPath::kAuto);
@@ -282,8 +286,14 @@ std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& in
   return {sim::frame_pass_use(terms, shared)};
 }
 
+// The follow-the-leader instances of one tressvk_cmd_simulate call and their guide vertices (the crowd rule).
+struct Crowd {
+  uint32_t instances = 0;
+  uint64_t guide_vertices = 0;
+};
+
 // Plans the instance's frame and writes its parameters into this frame's ring slice.
-TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
+TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const Crowd& crowd) {
   work.inst = &inst;
   work.plan = inst.planner->plan(inst.frame);
   const model::GpuFrame gpu = model::to_gpu(work.plan);
@@ -317,7 +327,8 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work) {
   work.dynamic_offsets = {static_cast<uint32_t>(base), static_cast<uint32_t>(base), static_cast<uint32_t>(base)};
   const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide,
                                                  inst.asset->rest.pinned_tip_strands > 0);
-  work.passes = passes_for_path(ctx, inst, terms);
+  work.passes = passes_for_path(ctx, inst, terms,
+                                sim::crowd_prefers_one_thread(crowd.instances, crowd.guide_vertices, work.steps));
   // A frame without steps runs nothing and changes nothing: it leaves the count (and idleness) as they were.
   if (work.steps == 0) return TVK_SUCCESS;
   // The fused frame kernels sleep; one pass per dispatch never does. Still frames in a row: one in kMeasureEvery
@@ -362,11 +373,14 @@ TvkResult prewarm_sim_pipelines(Context& ctx, const TvkInstance_T& inst, const T
   const auto& rest = inst.asset->rest;
   const sim::SceneTerms terms =
       sim::scene_terms(inst.params, frame, rest.follow_per_guide, rest.pinned_tip_strands > 0);
-  for (const PassUse& use : passes_for_path(ctx, inst, terms)) {
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    if (TvkResult r = get_pipeline(ctx, use, rest.vertices_per_strand, rest.follow_per_guide, pipeline);
-        r != TVK_SUCCESS)
-      return r;
+  // The instance's own kernel, and the one it takes in a crowd (the same pipeline where they agree).
+  for (const bool crowd : {false, true}) {
+    for (const PassUse& use : passes_for_path(ctx, inst, terms, crowd)) {
+      VkPipeline pipeline = VK_NULL_HANDLE;
+      if (TvkResult r = get_pipeline(ctx, use, rest.vertices_per_strand, rest.follow_per_guide, pipeline);
+          r != TVK_SUCCESS)
+        return r;
+    }
   }
   return TVK_SUCCESS;
 }
@@ -396,13 +410,18 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
                     info->instance_count);
 
   std::vector<InstanceWork> work(info->instance_count);
+  Crowd crowd;
+  for (uint32_t i = 0; i < info->instance_count; ++i) {
+    const TvkInstance_T* inst = info->instances[i];
+    if (!inst || inst->ctx != &ctx)
+      return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: instance %u is NULL or of another context", i);
+    if (model::resolve_model(inst->settings.model) != model::StrandModel::kFollowTheLeader) continue;
+    ++crowd.instances;
+    crowd.guide_vertices += uint64_t{inst->asset->rest.guide_count} * inst->asset->rest.vertices_per_strand;
+  }
   try {
     for (uint32_t i = 0; i < info->instance_count; ++i) {
-      TvkInstance_T* inst = info->instances[i];
-      if (!inst || inst->ctx != &ctx)
-        return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: instance %u is NULL or of another context",
-                        i);
-      if (TvkResult r = prepare(ctx, *inst, work[i]); r != TVK_SUCCESS) return r;
+      if (TvkResult r = prepare(ctx, *info->instances[i], work[i], crowd); r != TVK_SUCCESS) return r;
     }
   } catch (const std::exception& e) {
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: %s", e.what());
