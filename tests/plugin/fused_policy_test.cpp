@@ -21,16 +21,23 @@ TEST_CASE("the default path takes runs of 4, then of 8, then the one-thread kern
   CHECK(run_length_for(65536, 8, true) == 8);    // the bounds count guide vertices
 }
 
-TEST_CASE("a crowd at 3 or more steps a frame prefers the one-thread kernel from 8 instances and 512 k guide vertices",
-          "[plugin][simulation]") {
+TEST_CASE("a crowd prefers the one-thread kernel where the measured crossovers put it ahead", "[plugin][simulation]") {
   constexpr uint64_t kRatboy = 2221 * 32;
-  CHECK(crowd_prefers_one_thread(8, 8 * kRatboy, 4));          // measured: 386 against 460 us at 240 Hz
-  CHECK(crowd_prefers_one_thread(64, 64 * kRatboy, 4));        // 2,353 against 3,212
-  CHECK(crowd_prefers_one_thread(32, 32 * 512 * 32, 4));       // curly 512 guides: 298 against 415
-  CHECK_FALSE(crowd_prefers_one_thread(8, 8 * 512 * 32, 4));   // 131 k: runs of 4, 134 against 204
-  CHECK_FALSE(crowd_prefers_one_thread(4, 4 * kRatboy, 4));    // 280 against 301: the runs
-  CHECK_FALSE(crowd_prefers_one_thread(64, 64 * kRatboy, 1));  // 60 Hz: the runs stay ahead
+  // 240 Hz, 4 steps: from 4 instances and 400 k guide vertices.
+  CHECK(crowd_prefers_one_thread(8, 8 * kRatboy, 4));          // 386 against 460 us
+  CHECK(crowd_prefers_one_thread(6, 6 * kRatboy, 4));          // 339 against 396
+  CHECK(crowd_prefers_one_thread(4, 4 * 4096 * 32, 4));        // 318 against 416
+  CHECK(crowd_prefers_one_thread(32, 32 * 512 * 32, 4));       // 298 against 415
+  CHECK_FALSE(crowd_prefers_one_thread(4, 4 * kRatboy, 4));    // 284 k: the runs, 280 against 301
+  CHECK_FALSE(crowd_prefers_one_thread(8, 8 * 512 * 32, 4));   // 131 k: the runs, 134 against 204
+  CHECK_FALSE(crowd_prefers_one_thread(2, 2 * 8192 * 32, 4));  // 2 instances: the runs, 329 against 345
   CHECK_FALSE(crowd_prefers_one_thread(1, 600 * 1024, 4));     // one groom: run_length_for decides
+  // 120 Hz, 2 steps: from 8 instances and 512 k.
+  CHECK(crowd_prefers_one_thread(8, 8 * 2221 * 32, 2));        // 199 against 251
+  CHECK(crowd_prefers_one_thread(64, 64 * kRatboy, 2));        // 1,536 against 1,700
+  CHECK_FALSE(crowd_prefers_one_thread(6, 6 * kRatboy, 2));    // not measured: each keeps its own
+  // 60 Hz, 1 step: the runs stay ahead (8 Ratboys 165 against 189).
+  CHECK_FALSE(crowd_prefers_one_thread(64, 64 * kRatboy, 1));
 }
 
 TEST_CASE("a strand fits the subgroup when its lanes do", "[plugin][simulation]") {
