@@ -23,43 +23,6 @@
 
 #include <tressvk/asset_io.hpp>
 
-namespace {
-// The asset with only the listed guides (comma-separated indices), their follows, groups and bone weights.
-tressvk::asset::HairAsset only_guides(const tressvk::asset::HairAsset& a, const std::string& list, double& median) {
-  const uint32_t n = a.vertices_per_strand, k = a.follow_per_guide;
-  std::vector<double> lengths;
-  for (uint32_t g = 0; g < a.guide_count(); ++g) {
-    double l = 0;
-    for (uint32_t v = 0; v + 1 < n; ++v) l += a.rest_lengths[size_t{g} * n + v];
-    lengths.push_back(l);
-  }
-  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
-  median = lengths[lengths.size() / 2];
-  tressvk::asset::HairAsset o = a;
-  o.rest_positions.clear(); o.rest_lengths.clear(); o.rest_frames.clear(); o.rest_edge_local.clear();
-  o.guide_group.clear(); o.root_uv.clear(); o.bone_weights.clear(); o.follow_offsets.clear();
-  size_t at = 0;
-  while (at < list.size()) {
-    const size_t comma = std::min(list.find(',', at), list.size());
-    const uint32_t g = static_cast<uint32_t>(std::stoul(list.substr(at, comma - at)));
-    at = comma + 1;
-    if (g >= a.guide_count()) continue;
-    const size_t b = size_t{g} * n;
-    for (uint32_t v = 0; v < n; ++v) {
-      o.rest_positions.push_back(a.rest_positions[b + v]);
-      o.rest_lengths.push_back(a.rest_lengths[b + v]);
-      o.rest_frames.push_back(a.rest_frames[b + v]);
-      o.rest_edge_local.push_back(a.rest_edge_local[b + v]);
-    }
-    if (!a.guide_group.empty()) o.guide_group.push_back(a.guide_group[g]);
-    if (!a.root_uv.empty()) o.root_uv.push_back(a.root_uv[g]);
-    if (!a.bone_weights.empty()) o.bone_weights.push_back(a.bone_weights[g]);
-    for (uint32_t f = 0; f < k; ++f) o.follow_offsets.push_back(a.follow_offsets[size_t{g} * k + f]);
-  }
-  return o;
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   using namespace tvk_test;
   const std::string name = argc > 1 ? argv[1] : "curly";
