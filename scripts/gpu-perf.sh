@@ -8,7 +8,8 @@
 #
 # BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default: build/portable). DATADIR holds
 # tressfx/ratboy/Ratboy_mohawk.tfx (+ .tfxbone) for the Ratboy row (default: data/ beside the repository).
-# Writes one JSON file per run, table.md (the table) and sweep.md. BUDGET (seconds, default 400) stops
+# Writes one JSON file per run, table.md (the table) and sweep.md. Single tables instead: MODELS=1, SLEEP=1,
+# CROWD=1, CROWD_RULE=1, CHOICE=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
 # starting new sweep runs once spent, so that the whole script fits a bounded GPU session; rows not run are absent.
 set -euo pipefail
 OUT=${1:?usage: gpu-perf.sh OUTDIR [BINDIR [DATADIR]]}
@@ -114,6 +115,51 @@ if [ "${CROWD:-0}" = 1 ]; then
       done
     done
   } | tee "$OUT/crowd.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# CROWD_RULE=1: only the crowd rule's table (docs/simulation.md, "A crowd": the default, which picks the kernel by the
+# whole call, against each instance's own run kernel forced with TRESSVK_SIM_PATH=runs).
+if [ "${CROWD_RULE:-0}" = 1 ]; then
+  C="--scene shake --frames 200 --warmup 60 --error-frames 1"
+  both() { local name=$1; shift; perf "$name-default" default "$@" $C; perf "$name-own" runs "$@" $C; }
+  {
+    table_header
+    if [ -f "$MOHAWK" ]; then
+      for k in 1 4 6 8 16 64; do both "rule-ratboy-$k-240" --asset "$MOHAWK" --instances "$k"; done
+      for k in 6 8 64; do both "rule-ratboy-$k-120" --asset "$MOHAWK" --instances "$k" --step-rate 120; done
+      both "rule-ratboy-8-60" --asset "$MOHAWK" --instances 8 --step-rate 60
+    fi
+    both "rule-curly4096x4-240" --builtin curly --guides 4096 --instances 4
+    both "rule-curly8192x2-240" --builtin curly --guides 8192 --instances 2
+    both "rule-curly8192x4-240" --builtin curly --guides 8192 --instances 4
+    both "rule-curly2221x32-120" --builtin curly --guides 2221 --instances 32 --step-rate 120
+  } | tee "$OUT/crowd-rule.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# CHOICE=1: only the model choice's cost (docs/accuracy.md, "The settled look against the settings"): the default
+# (follow-the-leader, 240 Hz, 2 local iterations) against the conservative model through the setting (--model), at
+# the defaults and at its recommended 120 Hz with 1 iteration, on Ratboy, 1 M and 4 M guide vertices; Ratboy at rest.
+if [ "${CHOICE:-0}" = 1 ]; then
+  REC="--model conservative --step-rate 120 --local-iterations 1"
+  {
+    table_header
+    if [ -f "$MOHAWK" ]; then
+      perf "choice-ratboy-default" default --asset "$MOHAWK" $T
+      perf "choice-ratboy-conservative" default --asset "$MOHAWK" --model conservative $T
+      perf "choice-ratboy-conservative120" default --asset "$MOHAWK" $REC $T
+      perf "choice-ratboy-ftl120" default --asset "$MOHAWK" --step-rate 120 --local-iterations 1 $T
+      perf "choice-ratboy-default-rest" default --asset "$MOHAWK" --scene settle --warmup 1500
+      perf "choice-ratboy-conservative120-rest" default --asset "$MOHAWK" --scene settle --warmup 1500 $REC
+    fi
+    perf "choice-curly1M-default" default --builtin curly --guides 32768 $T
+    perf "choice-curly1M-conservative120" default --builtin curly --guides 32768 $REC $T
+    perf "choice-curly4M-default" default --builtin curly --guides 131072 $T
+    perf "choice-curly4M-conservative120" default --builtin curly --guides 131072 $REC $T
+  } | tee "$OUT/choice.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi
