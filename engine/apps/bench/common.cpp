@@ -21,14 +21,18 @@ void add_groom_options(CLI::App& subcommand, std::string& asset_path, std::strin
   source->require_option(1);
 }
 
+void add_model_option(CLI::App& subcommand, TvkSimModel& model) {
+  subcommand.add_option("--model", model,
+                        "the strand model: default (follow-the-leader, or TRESSVK_SIM_MODEL), follow-the-leader, "
+                        "conservative, compliant")
+      ->transform(CLI::CheckedTransformer(demo::sim_model_names()));
+}
+
 void add_simulation_options(CLI::App& subcommand, TvkSimParams& params, TvkSimSettings& settings) {
   subcommand.add_option("--step-rate", settings.time.step_rate, "simulation steps per second")->capture_default_str();
   subcommand.add_option("--local-iterations", params.local_iterations)->capture_default_str();
   subcommand.add_option("--length-iterations", params.length_iterations)->capture_default_str();
-  subcommand.add_option("--model", settings.model,
-                        "the strand model: default (follow-the-leader, or TRESSVK_SIM_MODEL), follow-the-leader, "
-                        "conservative, compliant")
-      ->transform(CLI::CheckedTransformer(demo::sim_model_names()));
+  add_model_option(subcommand, settings.model);
   subcommand.add_option("--sleep-below", settings.sleep_below,
                         "a still groom's guides sleep below this move per step (fraction of the median strand length; 0 = never)")
       ->capture_default_str();

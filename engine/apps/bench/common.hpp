@@ -27,6 +27,8 @@ inline double median(std::vector<double> v) { return percentile(std::move(v), 0.
 void add_groom_options(CLI::App& subcommand, std::string& asset_path, std::string& builtin);
 
 // The simulation options every simulating subcommand takes: --step-rate, --local-iterations, --length-iterations.
+// --model: the strand model (TvkSimSettings::model) by name: default, follow-the-leader, conservative, compliant.
+void add_model_option(CLI::App& subcommand, TvkSimModel& model);
 void add_simulation_options(CLI::App& subcommand, TvkSimParams& params, TvkSimSettings& settings);
 
 // Writes `j` (indented) to `path`; false, with "`tool`: cannot write PATH" on stderr, when that fails.

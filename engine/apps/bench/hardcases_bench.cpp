@@ -1,5 +1,6 @@
 #include "hardcases_bench.hpp"
 
+#include "common.hpp"
 #include "gpu_track.hpp"
 #include "hard_cases.hpp"
 
@@ -66,6 +67,7 @@ reference::Trajectory model_reference(const HardCase& c, uint32_t guides, double
   const bool unscaled = c.against == ModelErrorAgainst::kUnscaled;
   const asset::HairAsset prefix = reference::guide_prefix(unscaled ? c.unscaled_groom : c.groom, guides);
   o.step_rate = c.settings.time.step_rate;
+  o.model = c.settings.model;
   o.scene = c.reference_scene;
   const reference::SceneGeometry ref_geometry =
       unscaled ? reference::scene_geometry(model::build_model_rest(c.unscaled_groom)) : geometry;
@@ -92,6 +94,7 @@ void add_hardcases_command(CLI::App& app, HardCasesCommand& cmd) {
   h->add_option("--local-iterations", cmd.local_iterations,
                 "run every case with this many local-shape iterations (default: each case's own)")
       ->check(CLI::Range(1u, static_cast<uint32_t>(TVK_MAX_ITERATIONS)));
+  add_model_option(*h, cmd.model);
   h->add_option("--json", cmd.json_path, "write the table as JSON");
   h->add_option("--device", cmd.device, "device index or name substring (default: discrete GPU first)");
   h->add_flag("--validation", cmd.validation,
@@ -117,6 +120,7 @@ int execute_hardcases_command(const HardCasesCommand& cmd) {
   for (HardCase& c : cases) {  // a setting other than each case's own, for every case (the table says which)
     if (cmd.step_rate > 0) c.settings.time.step_rate = static_cast<float>(cmd.step_rate);
     if (cmd.local_iterations > 0) c.params.local_iterations = c.unscaled_params.local_iterations = cmd.local_iterations;
+    c.settings.model = cmd.model;
   }
   nlohmann::json rows = nlohmann::json::array();
   uint32_t passed = 0;

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <tressvk/tressvk.h>
 #include <string>
 
 namespace tressvk::bench {
@@ -16,6 +17,7 @@ struct HardCasesCommand {
   uint32_t model_error_guides = 4;  // guides compared for the model error
   double step_rate = 0;             // Hz; 0: each case's own (the default 240 Hz)
   uint32_t local_iterations = 0;    // 0: each case's own
+  TvkSimModel model = TVK_SIM_MODEL_DEFAULT;  // every case's TvkSimSettings::model
   bool validation = false;
 };
 

@@ -149,6 +149,7 @@ void add_sweep_command(CLI::App& app, SweepCommand& cmd) {
   s->add_option("--threads", cmd.threads, "threads for the converged references (0: one per scene)")->capture_default_str();
   s->add_option("--params", cmd.params_path, "JSON parameter file (as compare --params); the swept axes override it")
       ->check(CLI::ExistingFile);
+  add_model_option(*s, cmd.settings.model);
   s->add_option("--csv", cmd.csv_path, "write the rows as CSV");
   s->add_option("--json", cmd.json_path, "write the rows as JSON");
   s->add_option("--device", cmd.device, "device index or name substring (default: discrete GPU first)");
@@ -184,7 +185,9 @@ int execute_sweep_command(const SweepCommand& given) {
     try {
       const demo::Params file = demo::load_params(cmd.params_path);
       cmd.params = file.simulation;
+      const TvkSimModel given_model = cmd.settings.model;
       cmd.settings = file.settings;
+      if (cmd.app->count("--model")) cmd.settings.model = given_model;  // the command line over the file
     } catch (const demo::ParamsError& e) {
       std::fprintf(stderr, "%s: %s\n", me, e.what());
       return 1;
@@ -235,6 +238,7 @@ int execute_sweep_command(const SweepCommand& given) {
         jobs.push_back(std::async(std::launch::async, [&, i] {
           reference::TrajectoryOptions o;
           o.step_rate = cmd.reference_rate;
+          o.model = cmd.settings.model;
           o.scene = cmd.scenes[i];
           o.frames = cmd.frames;
           o.geometry = &geometry;

@@ -11,6 +11,7 @@ Trajectory reference_trajectory(const asset::HairAsset& asset, std::span<const T
   TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
   s.time.step_rate = static_cast<float>(options.step_rate);
   s.time.max_steps_per_frame = kConvergedLimits.max_steps_per_frame;
+  s.model = options.model;
   Simulator sim(asset, params, s, kConvergedLimits);
   if (options.configure) options.configure(sim);
   const SceneGeometry geometry = options.geometry ? *options.geometry : scene_geometry(sim.rest());

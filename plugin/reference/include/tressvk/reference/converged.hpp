@@ -27,6 +27,7 @@ using Trajectory = std::vector<std::vector<Vec3>>;
 struct TrajectoryOptions {
   double step_rate = 3840.0;       // Hz, up to kConvergedLimits.max_step_rate
   std::string_view scene = "settle";
+  TvkSimModel model = TVK_SIM_MODEL_DEFAULT;  // TvkSimSettings::model of the reference
   uint32_t frames = 60;
   const SceneGeometry* geometry = nullptr;  // null: fitted to this asset's roots (scene_geometry)
   // Called on the simulator before the first frame (e.g. to pick a reference-only model option).
