@@ -13,20 +13,26 @@ endforeach()
 file(REMOVE_RECURSE "${OUT_DIR}")
 file(MAKE_DIRECTORY "${OUT_DIR}")
 
+# Runs `tressvk-bench perf ARGS... --json JSON` (with ENV, a list of VAR=VALUE, in its environment) and reads the JSON
+# into TEXT; fails the test, naming LABEL, when the run does.
+function(run_perf label json env)
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env ${env} "${BENCH}" perf ${ARGN} --json "${json}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "tressvk-bench perf ${label} failed (${rc}):\n${out}\n${err}")
+  endif()
+  file(READ "${json}" text)
+  set(text "${text}" PARENT_SCOPE)
+endfunction()
+
 foreach(path default fused passes)
   set(json "${OUT_DIR}/${path}.json")
   set(env_path "${path}")
   if(path STREQUAL "default")
     set(env_path "")
   endif()
-  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "TRESSVK_SIM_PATH=${env_path}"
-                          "${BENCH}" perf --builtin curly --guides 40 --follows 1 --scene shake --frames 4 --warmup 2
-                          --error-frames 2 --validation --json "${json}"
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "tressvk-bench perf (${path}) failed (${rc}):\n${out}\n${err}")
-  endif()
-  file(READ "${json}" text)
+  run_perf("(${path})" "${json}" "TRESSVK_SIM_PATH=${env_path}"
+           --builtin curly --guides 40 --follows 1 --scene shake --frames 4 --warmup 2 --error-frames 2 --validation)
   foreach(key gpu_ms_per_frame gpu_ms_per_frame_p99 bytes_per_frame achieved_gb_per_s copy_gb_per_s
               dispatches_per_frame step_error_max_rel steps_per_frame guide_vertices)
     string(JSON value ERROR_VARIABLE missing GET "${text}" ${key})
@@ -74,13 +80,8 @@ endforeach()
 # A crowd (--instances 3): every instance in one tressvk_cmd_simulate, one frame-kernel dispatch each, validation clean
 # (the instances' barriers are their own buffers'), the step error the first instance's.
 set(json "${OUT_DIR}/crowd.json")
-execute_process(COMMAND "${BENCH}" perf --builtin curly --guides 40 --instances 3 --scene shake --frames 4 --warmup 2
-                        --error-frames 1 --validation --json "${json}"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "tressvk-bench perf --instances 3 failed (${rc}):\n${out}\n${err}")
-endif()
-file(READ "${json}" text)
+run_perf("--instances 3" "${json}" ""
+         --builtin curly --guides 40 --instances 3 --scene shake --frames 4 --warmup 2 --error-frames 1 --validation)
 string(JSON instances GET "${text}" instances)
 string(JSON dispatches GET "${text}" dispatches_per_frame)
 string(JSON crowd_error GET "${text}" step_error_max_rel)

@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
-#include <string>
 
 namespace tressvk::viewer {
 
@@ -97,10 +96,10 @@ void Panel::build(demo::DemoApp& app, const demo::FrameReport& frame, Window& wi
     static const char* const kModels[] = {"follow-the-leader", "conservative", "compliant"};
     static const TvkSimModel kModelValues[] = {TVK_SIM_MODEL_FOLLOW_THE_LEADER, TVK_SIM_MODEL_CONSERVATIVE,
                                                TVK_SIM_MODEL_COMPLIANT};
-    const std::string current = demo::resolved_sim_model_name(p.settings.model);
+    const TvkSimModel current = demo::resolved_sim_model(p.settings.model);
     int model = 0;
     for (int i = 0; i < 3; ++i)
-      if (current == kModels[i]) model = i;
+      if (current == kModelValues[i]) model = i;
     if (ImGui::Combo("model", &model, kModels, 3)) {
       p.settings.model = kModelValues[model];
       changed = true;
