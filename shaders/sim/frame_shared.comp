@@ -3,6 +3,7 @@
 // The host uses it only where 32 x N x 16 bytes x 2 fit the device's shared memory.
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#define TVK_FOLLOWS 1  // any K: this variant is one module
 #include "sim/layout.glsl"
 layout(local_size_x = 32) in;
 

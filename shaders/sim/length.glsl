@@ -124,6 +124,19 @@ void solve_tip_pinned(uint b) {
   }
 }
 
+// Vertex v's tangent t of guide g (strand base b). The one-thread frame kernel for grooms with follow hairs
+// (TVK_FOLLOW_TANGENTS, frame_follows.comp) gives the guide's follows the same tangent here, as it is made, instead of
+// reading it back when it writes the follows (frame.glsl: with that read-back walk the kernel took 255 registers, now
+// 168). Elsewhere a plain store; the pass-per-dispatch path's follow pass copies tangents (follow.comp).
+#ifdef TVK_FOLLOW_TANGENTS
+void write_tangent(uint g, uint b, uint v, vec4 t) {
+  tangent[b + v * TVK_BLOCK] = t;
+  for (uint f = 0u; f < K; ++f) tangent[vertex_index(pc.guide_count * (f + 1u) + g, v)] = t;
+}
+#else
+#define write_tangent(g, b, v, t) tangent[(b) + (v) * TVK_BLOCK] = (t)
+#endif
+
 // The walk that ends a step (after the length sweeps): the velocity clamp, the non-finite check and the tangents
 // (along the edge leaving v, arriving for the tip; an edge too short to have a direction reuses the previous tangent,
 // and the root falls back to the current root frame's +X). Steps v = 0 .. N-1 in order, each with vertex v and
@@ -169,7 +182,7 @@ void finish_step(inout FinishWalk w, uint b, uint v, vec4 p, vec4 next) {
   vec3 e = v + 1u < N ? next.xyz - p.xyz : p.xyz - w.before.xyz;
   float len = length(e);
   if (len > w.min_len) w.last = e / len;
-  if (w.write_tangents) tangent[b + v * TVK_BLOCK] = vec4(w.last, 0.0);
+  if (w.write_tangents) write_tangent(w.g, b, v, vec4(w.last, 0.0));
   w.before = p;
 }
 
@@ -335,7 +348,7 @@ void length_reset_if_not_finite(uint g, uint b, bool ok, bool write_tangents, fl
                           : TVK_POS(b + v * TVK_BLOCK).xyz - TVK_POS(b + (v - 1u) * TVK_BLOCK).xyz;
       float len = length(e);
       if (len > min_len) last = e / len;
-      tangent[b + v * TVK_BLOCK] = vec4(last, 0.0);
+      write_tangent(g, b, v, vec4(last, 0.0));
     }
   }
 }

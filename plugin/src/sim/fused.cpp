@@ -22,6 +22,11 @@ constexpr uint32_t kFrameFeatures = kFeatureGlobalShape | kFeatureWind | kFeatur
 const PassInfo kFramePrivate = {PassId::kFrame, "frame", k_spv_frame_comp, sizeof(k_spv_frame_comp),
                                 Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites,
                                 kFrameFeatures, true};
+// The same kernel for grooms with follow hairs (frame_follows.comp: each follow vertex written with its guide's); the
+// one without keeps no follow code in its module, where the driver's register allocation would see it.
+const PassInfo kFramePrivateFollows = {PassId::kFrame, "frame", k_spv_frame_follows_comp,
+                                       sizeof(k_spv_frame_follows_comp), Granularity::kGuide, Frequency::kPerFrame,
+                                       all_bindings(), kFrameWrites, kFrameFeatures, true};
 const PassInfo kFrameShared = {PassId::kFrame, "frame", k_spv_frame_shared_comp, sizeof(k_spv_frame_shared_comp),
                                Granularity::kGuide, Frequency::kPerFrame, all_bindings(), kFrameWrites,
                                kFrameFeatures, true};
@@ -118,7 +123,8 @@ uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool /*vsp*/) {
 }
 
 PassUse frame_pass_use(const SceneTerms& terms, bool shared) {
-  PassUse use{shared ? &kFrameShared : &kFramePrivate, "frame", terms.features, terms.capsule_count};
+  PassUse use{shared ? &kFrameShared : terms.follow ? &kFramePrivateFollows : &kFramePrivate, "frame", terms.features,
+              terms.capsule_count};
   if (terms.vsp) use.features |= kFeatureVsp;
   if (terms.local_shape) use.features |= kFeatureLocalShape;
   if (shared) use.features |= kSharedVariantBit;
