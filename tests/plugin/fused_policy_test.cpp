@@ -23,21 +23,23 @@ TEST_CASE("the default path takes runs of 4, then of 8, then the one-thread kern
 
 TEST_CASE("a crowd prefers the one-thread kernel where the measured crossovers put it ahead", "[plugin][simulation]") {
   constexpr uint64_t kRatboy = 2221 * 32;
-  // 240 Hz, 4 steps: from 4 instances and 400 k guide vertices.
-  CHECK(crowd_prefers_one_thread(8, 8 * kRatboy, 4));          // 386 against 460 us
-  CHECK(crowd_prefers_one_thread(6, 6 * kRatboy, 4));          // 339 against 396
+  // From 4 instances and 400 k guide vertices, at every step rate (H100, us per frame: the one-thread kernel against
+  // each instance's own runs).
+  CHECK(crowd_prefers_one_thread(6, 6 * kRatboy, 4));          // 240 Hz: 313 against 395
+  CHECK(crowd_prefers_one_thread(64, 64 * kRatboy, 4));        // 1,955 against 3,213
   CHECK(crowd_prefers_one_thread(4, 4 * 4096 * 32, 4));        // 318 against 416
   CHECK(crowd_prefers_one_thread(32, 32 * 512 * 32, 4));       // 298 against 415
-  CHECK_FALSE(crowd_prefers_one_thread(4, 4 * kRatboy, 4));    // 284 k: the runs, 280 against 301
+  CHECK(crowd_prefers_one_thread(6, 6 * kRatboy, 2));          // 120 Hz: 193 against 229
+  CHECK(crowd_prefers_one_thread(4, 4 * 4096 * 32, 2));        // 191 against 230
+  CHECK(crowd_prefers_one_thread(6, 6 * kRatboy, 1));          // 60 Hz: 132 against 150
+  CHECK(crowd_prefers_one_thread(32, 32 * 512 * 32, 1));       // 123 against 139
+  CHECK_FALSE(crowd_prefers_one_thread(4, 4 * kRatboy, 4));    // 284 k: the runs, 280 against 288
+  CHECK_FALSE(crowd_prefers_one_thread(4, 4 * kRatboy, 2));    // 165 against 171
+  CHECK_FALSE(crowd_prefers_one_thread(4, 4 * kRatboy, 1));    // 112 against 118
   CHECK_FALSE(crowd_prefers_one_thread(8, 8 * 512 * 32, 4));   // 131 k: the runs, 134 against 204
   CHECK_FALSE(crowd_prefers_one_thread(2, 2 * 8192 * 32, 4));  // 2 instances: the runs, 329 against 345
   CHECK_FALSE(crowd_prefers_one_thread(1, 600 * 1024, 4));     // one groom: run_length_for decides
-  // 120 Hz, 2 steps: from 8 instances and 512 k.
-  CHECK(crowd_prefers_one_thread(8, 8 * 2221 * 32, 2));        // 199 against 251
-  CHECK(crowd_prefers_one_thread(64, 64 * kRatboy, 2));        // 1,536 against 1,700
-  CHECK_FALSE(crowd_prefers_one_thread(6, 6 * kRatboy, 2));    // not measured: each keeps its own
-  // 60 Hz, 1 step: the runs stay ahead (8 Ratboys 165 against 189).
-  CHECK_FALSE(crowd_prefers_one_thread(64, 64 * kRatboy, 1));
+  CHECK_FALSE(crowd_prefers_one_thread(64, 64 * kRatboy, 0));  // no steps, nothing to run
 }
 
 TEST_CASE("a strand fits the subgroup when its lanes do", "[plugin][simulation]") {

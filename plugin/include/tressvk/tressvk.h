@@ -199,7 +199,7 @@ TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* fra
  * on the asset's strand size, the instance's parameters and which terms the frame has (wind, capsules, bones);
  * call it after the parameters are set, e.g. at load time with the first frame. A follow-the-leader instance also
  * gets the kernel it takes in a crowd (4 or more such instances in one tressvk_cmd_simulate with 400 k guide
- * vertices between them at 3 or more steps a frame, 8 and 512 k at 2 steps). Records nothing; optional. */
+ * vertices between them). Records nothing; optional. */
 TVK_API TvkResult tressvk_prewarm_instance(TvkInstance instance, const TvkSimFrame* frame);
 
 /* The simulated state, for hosts that draw or read it themselves (read only: a guide that sleeps,

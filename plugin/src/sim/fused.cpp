@@ -55,22 +55,21 @@ constexpr uint64_t kRuns4MaxGuideVertices = 160u * 1024u;
 constexpr uint64_t kRuns8MaxGuideVertices = 768u * 1024u;
 // A crowd (many instances in one tressvk_cmd_simulate) is not one big groom: each instance is its own dispatch, and
 // once a call holds enough instances and guide vertices the one-thread kernel beats each instance's own run kernel,
-// whatever the groom size chose alone. NVIDIA H100, shake, us per frame for the whole call, each instance's own
-// runs / runs of 8 / one-thread (docs/simulation.md, "A crowd"):
-//   240 Hz (4 steps): 4 Ratboys (284 k guide vertices) 280 / 307 / 301; 6 Ratboys (426 k) 396 / 341 / 339; 8 Ratboys
-//   460 / 464 / 386; 64 Ratboys 3,212 / 2,680 / 2,353; 8 x curly 512 guides (131 k) 134 / 136 / 204; 32 x 512
-//   (524 k) 415 / 317 / 298; 4 x curly 4,096 (524 k) 416 / 324 / 318; 2 x curly 8,192 (524 k) 329 / 330 / 345; 4 x
-//   8,192 618 / 619 / 519; 2 x 16,384 622 / 622 / 563; 4 x 16,384 1,197 / 1,198 / 780; 8 / 32 x 2,221 455 / 433 / 331
-//   and 1,620 / 1,277 / 1,035.
-//   120 Hz (2 steps): 8 Ratboys 262 / 280 / 261; 32 883 / 820 / 870; 64 1,700 / 1,539 / 1,536; 8 / 32 x curly 2,221
-//   251 / 249 / 199 and 854 / 717 / 601; 32 x 512 229 / 184 / 183.
-//   60 Hz (1 step): the runs stay ahead (8 Ratboys 165 / 184 / 189).
-// So: at 3 or more steps, 4 or more instances with 400 k guide vertices between them; at 2 steps, 8 or more with
-// 512 k. Both kernels give the same floats, so a frame may take either.
+// whatever the groom size chose alone. NVIDIA H100, shake, us per frame for the whole call, each instance's own runs
+// against the one-thread kernel (docs/simulation.md, "A crowd"), Ratboy with its 2 follow hairs a guide:
+//   240 Hz (4 steps): 2 / 4 / 6 / 8 / 16 / 64 Ratboys 161 / 280 / 395 / 460 / 847 / 3,213 against 228 / 288 / 313 /
+//   361 / 539 / 1,955; 4 / 32 x curly 4,096 / 512 416 / 415 against 318 / 298; 8 x curly 512 (131 k) 134 against
+//   204; 2 x curly 8,192 329 against 345.
+//   120 Hz (2 steps): 4 / 6 / 8 / 64 Ratboys 165 / 229 / 261 / 1,701 against 171 / 193 / 220 / 1,180; 4 / 6 / 64 x
+//   curly 2,221 148 / 207 / 1,661 against 154 / 175 / 1,025; 4 x curly 4,096 230 against 191; 32 x 512 229 / 182.
+//   60 Hz (1 step): 4 / 6 / 8 / 64 Ratboys 112 / 150 / 165 / 974 against 118 / 132 / 151 / 789; 4 / 6 / 8 / 64 x
+//   curly 2,221 89 / 122 / 149 / 909 against 102 / 118 / 132 / 660; 4 x curly 4,096 142 against 127; 32 x 512 139
+//   against 123; 4 x 16,384 419 against 290.
+// So, at any step rate: 4 or more instances with 400 k guide vertices between them. (Before the one-thread kernel
+// wrote follow hairs with their guide, at 255 registers, it lost at 1 step and needed 8 instances at 2.) Both kernels
+// give the same floats, so a frame may take either.
 constexpr uint32_t kCrowdMinInstances = 4;
 constexpr uint64_t kCrowdMinGuideVertices = 400u * 1024u;
-constexpr uint32_t kCrowdMinInstancesAt2Steps = 8;
-constexpr uint64_t kCrowdMinGuideVerticesAt2Steps = 512u * 1024u;
 // Workgroup size of the subgroup variant: whole subgroups, at least this many invocations.
 constexpr uint32_t kLanesSubgroupWorkgroup = 64;
 // With the conservative local shape: as many strands a workgroup as its shared memory holds, up to
@@ -201,9 +200,7 @@ uint32_t run_length_for(uint32_t guide_count, uint32_t vertices_per_strand, bool
 }
 
 bool crowd_prefers_one_thread(uint32_t instances, uint64_t guide_vertices, uint32_t steps) {
-  if (steps >= 3) return instances >= kCrowdMinInstances && guide_vertices >= kCrowdMinGuideVertices;
-  if (steps == 2) return instances >= kCrowdMinInstancesAt2Steps && guide_vertices >= kCrowdMinGuideVerticesAt2Steps;
-  return false;
+  return steps > 0 && instances >= kCrowdMinInstances && guide_vertices >= kCrowdMinGuideVertices;
 }
 
 PassUse frame_runs_pass_use(const SceneTerms& terms, uint32_t run_length) {

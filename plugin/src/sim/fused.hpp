@@ -66,8 +66,8 @@ uint32_t run_length_from_environment();
 uint32_t run_length_for(uint32_t guide_count, uint32_t vertices_per_strand, bool fall_back);
 // A frame of a tressvk_cmd_simulate call whose follow-the-leader instances number `instances` and hold
 // `guide_vertices` between them, with `steps` steps: true where the measured crossovers (fused.cpp) put the
-// one-thread kernel ahead of each instance's own run kernel (3+ steps: 4 instances and 400 k guide vertices; 2
-// steps: 8 and 512 k; 1 step: never).
+// one-thread kernel ahead of each instance's own run kernel (4 instances and 400 k guide vertices, at any step rate;
+// a frame without steps runs nothing).
 bool crowd_prefers_one_thread(uint32_t instances, uint64_t guide_vertices, uint32_t steps);
 // RL lanes fit the subgroup, and compute shaders may shuffle and vote.
 bool runs_fit_subgroup(uint32_t vertices_per_strand, uint32_t run_length, uint32_t subgroup_size,
