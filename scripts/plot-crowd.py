@@ -21,7 +21,11 @@ import matplotlib.ticker
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-LABELS = {"runs4": "runs of 4 (this groom alone)", "runs8": "runs of 8", "fused": "one thread per strand (a crowd of 400 k guide vertices)"}
+LABELS = {
+    "runs4": "runs of 4 (this groom alone)",
+    "runs8": "runs of 8",
+    "fused": "one thread per strand (a crowd of 400 k guide vertices)",
+}
 TARGET_240HZ_US = 25.0  # the speed issue's target for Ratboy + 2 follows at 240 Hz
 STYLES = {"runs4": "o-", "runs8": "s--", "fused": "^-."}
 

@@ -87,7 +87,7 @@ void main() {
     prev[i] = TVK_PREV(i);
 #ifdef TVK_FOLLOWS
     for (uint f = 0u; f < K; ++f) {
-      uint dst = vertex_index(pc.guide_count * (f + 1u) + g, v);
+      uint dst = vertex_index(follow_strand(pc.guide_count, g, f), v);
       pos[dst] = follow_vertex(TVK_POS(i), follow_offset_of[f], tip_separation, v);
     }
 #endif

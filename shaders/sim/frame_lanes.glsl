@@ -313,7 +313,7 @@ void main() {
     uint G = pc.guide_count;
     for (uint f = 0u; f < K && vert && tvk_active; ++f) {
       vec3 offset = quat_rotate(root_now, follow_offset[g * K + f].xyz);  // follow_root_offset, the lanes' root frame
-      uint dst = vertex_index(G + f * G + g, v);
+      uint dst = vertex_index(follow_strand(G, g, f), v);
       pos[dst] = follow_vertex(L_pos, offset, tip_separation, v);
       tangent[dst] = tangent[i];
     }

@@ -361,7 +361,7 @@ void main() {
       [[unroll]] for (uint k = 0u; k < RUN; ++k) {
         uint v = vtx(k);
         if (v < N) {
-          uint dst = vertex_index(G + f * G + g, v);
+          uint dst = vertex_index(follow_strand(G, g, f), v);
           pos[dst] = follow_vertex(R_pos[k], offset, tip_separation, v);
           tangent[dst] = tangent[b + v * TVK_BLOCK];
         }

@@ -45,6 +45,8 @@ layout(constant_id = 4) const uint CAPSULE_COUNT = 0;     // 0..8, capsules test
 // ---- vertex layout (TVK_BLOCK and TVK_VERTEX_INDEX in gpu_layout.h; TVK_STRAND_BLOCK in tressvk.h) ---
 uint strand_base(uint s) { return (s / TVK_BLOCK) * (TVK_BLOCK * N) + s % TVK_BLOCK; }
 uint vertex_index(uint s, uint v) { return strand_base(s) + v * TVK_BLOCK; }
+// The strand of follow f of guide g, of G guides.
+uint follow_strand(uint G, uint g, uint f) { return G + f * G + g; }
 // The strand and vertex of element i of a per-vertex buffer (for one-thread-per-vertex passes, thread i = element i).
 uvec2 element_strand_vertex(uint i) {
   uint block = i / (TVK_BLOCK * N);
