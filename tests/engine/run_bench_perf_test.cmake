@@ -32,7 +32,8 @@ foreach(path default fused passes)
     set(env_path "")
   endif()
   run_perf("(${path})" "${json}" "TRESSVK_SIM_PATH=${env_path}"
-           --builtin curly --guides 40 --follows 1 --scene shake --frames 4 --warmup 2 --error-frames 2 --validation)
+           --builtin curly --guides 40 --follows 1 --scene shake --frames 4 --warmup 2 --error-frames 2 --validation
+           --warmup-ms 0 --warmup-ms-max 200)
   foreach(key gpu_ms_per_frame gpu_ms_per_frame_p99 bytes_per_frame achieved_gb_per_s copy_gb_per_s
               dispatches_per_frame step_error_max_rel steps_per_frame guide_vertices)
     string(JSON value ERROR_VARIABLE missing GET "${text}" ${key})
@@ -44,8 +45,14 @@ foreach(path default fused passes)
     endif()
     set(${key} "${value}")
   endforeach()
+  # The warm-up (at least --warmup frames, then until the frame time settles, here at most 200 ms: the bound keeps
+  # the test short on lavapipe, whose frame times wander with the host's load).
+  string(JSON warmup_frames GET "${text}" warmup_frames)
+  if(warmup_frames LESS 2)
+    message(FATAL_ERROR "perf (${path}): ${warmup_frames} warm-up frames, expected at least --warmup 2")
+  endif()
   # Sleeping (docs/simulation.md): the threshold in use and the guides asleep after the timed frames (0 in `shake`).
-  foreach(key sleep_below guides_asleep)
+  foreach(key sleep_below guides_asleep warmup_ms warmup_settled)
     string(JSON value ERROR_VARIABLE missing GET "${text}" ${key})
     if(missing)
       message(FATAL_ERROR "perf (${path}): key ${key} missing from ${json}")
@@ -81,7 +88,8 @@ endforeach()
 # (the instances' barriers are their own buffers'), the step error the first instance's.
 set(json "${OUT_DIR}/crowd.json")
 run_perf("--instances 3" "${json}" ""
-         --builtin curly --guides 40 --instances 3 --scene shake --frames 4 --warmup 2 --error-frames 1 --validation)
+         --builtin curly --guides 40 --instances 3 --scene shake --frames 4 --warmup 2 --error-frames 1 --validation
+         --warmup-ms 0 --warmup-ms-max 0)
 string(JSON instances GET "${text}" instances)
 string(JSON dispatches GET "${text}" dispatches_per_frame)
 string(JSON crowd_error GET "${text}" step_error_max_rel)

@@ -87,7 +87,15 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
   add_groom_options(*perf, cmd.asset_path, cmd.builtin);
   perf->add_option("--scene", cmd.scene, "settle, shake, run, teleport, wind, hitch or far")->capture_default_str();
   perf->add_option("--frames", cmd.frames, "timed frames")->capture_default_str()->check(CLI::PositiveNumber);
-  perf->add_option("--warmup", cmd.warmup, "frames run before timing")->capture_default_str();
+  perf->add_option("--warmup", cmd.warmup, "frames run before timing (at least)")->capture_default_str();
+  perf->add_option("--warmup-ms", cmd.warmup_ms, "milliseconds of GPU work before timing (at least)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  perf->add_option("--warmup-ms-max", cmd.warmup_ms_max,
+                   "then warm up until the frame time has settled, at most this many milliseconds (0 with "
+                   "--warmup-ms 0: --warmup frames only)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   perf->add_option("--in-flight", cmd.frames_in_flight, "frames in flight")->capture_default_str()->check(CLI::Range(1, 8));
   perf->add_option("--error-frames", cmd.error_frames, "frames after the timed ones whose step error is measured")
       ->capture_default_str();
@@ -173,8 +181,13 @@ int execute_perf_command(const PerfCommand& given) {
     const reference::SceneGeometry geometry = reference::scene_geometry(ref.rest());
     const double median_length = ref.median_strand_length();
 
+    // The GPU idled while the host built the groom and the reference: its clock may be climbing back for a second,
+    // and frames timed on the climb read slow (docs/simulation.md, "Slow rows: the GPU's clock after a gap"). So
+    // the warm-up lasts until the frame time has settled, as the sweep's does.
     WarmUp warm;
     warm.frames = cmd.warmup;
+    warm.min_ms = cmd.warmup_ms;
+    warm.max_ms = std::max(cmd.warmup_ms, cmd.warmup_ms_max);
     const FrameTimes times = time_frames(
         dev, ctx, crowd, ref.planner(), [&](uint32_t f) { return reference::scene_frame(cmd.scene, f, geometry); },
         warm, cmd.frames, cmd.frames_in_flight);
@@ -254,6 +267,9 @@ int execute_perf_command(const PerfCommand& given) {
         {"steps_per_frame", steps_per_frame},
         {"frames", cmd.frames},
         {"warmup", cmd.warmup},
+        {"warmup_frames", times.warmup_frames},
+        {"warmup_ms", times.warmup_ms},
+        {"warmup_settled", times.warmup_settled},
         {"frames_in_flight", cmd.frames_in_flight},
         {"passes", pass_names},
         {"dispatches_per_frame", dispatches},
@@ -279,15 +295,19 @@ int execute_perf_command(const PerfCommand& given) {
     return report_failure(e, "tressvk-bench perf");
   }
 
+  if (!out["warmup_settled"].get<bool>())
+    std::fprintf(stderr, "tressvk-bench perf: the frame time had not settled after %.0f ms of warm-up; timed anyway\n",
+                 out["warmup_ms"].get<double>());
   if (cmd.table_row) {
     // | groom | guide vertices | step rate | path (kernel) | us/frame | p99 | GB/s (copy) | dispatches | step error |
+    // (the median cell says "unsettled" when the warm-up ran out before the frame time settled)
     const std::string groom_cell = out["groom"].get<std::string>() +
                                    (cmd.instances > 1 ? " x " + std::to_string(cmd.instances) + " instances" : "");
-    std::printf("| %s | %llu | %.0f Hz | %s (%s) | %.1f | %.1f | %.0f (%.0f) | %u | %.2g |\n", groom_cell.c_str(),
+    std::printf("| %s | %llu | %.0f Hz | %s (%s) | %.1f%s | %.1f | %.0f (%.0f) | %u | %.2g |\n", groom_cell.c_str(),
                 static_cast<unsigned long long>(out["guide_vertices"].get<uint64_t>()),
                 out["step_rate_hz"].get<double>(), out["sim_path"].get<std::string>().c_str(),
-                out["kernel"].get<std::string>().c_str(),
-                1e3 * out["gpu_ms_per_frame"].get<double>(), 1e3 * out["gpu_ms_per_frame_p99"].get<double>(),
+                out["kernel"].get<std::string>().c_str(), 1e3 * out["gpu_ms_per_frame"].get<double>(),
+                out["warmup_settled"].get<bool>() ? "" : " (unsettled)", 1e3 * out["gpu_ms_per_frame_p99"].get<double>(),
                 out["achieved_gb_per_s"].get<double>(), out["copy_gb_per_s"].get<double>(),
                 out["dispatches_per_frame"].get<uint32_t>(), out["step_error_max_rel"].get<double>());
   } else {

@@ -19,6 +19,10 @@ struct PerfCommand {
   uint32_t frames = 300, warmup = 60, frames_in_flight = 3, error_frames = 3;
   uint32_t guides = 64, follows = 0, vertices = 0;
   uint32_t instances = 1;  // instances of the groom simulated in one tressvk_cmd_simulate a frame (a crowd)
+  // Warm-up (frame_timing.hpp, WarmUp): at least `warmup` frames and `warmup_ms` of GPU work, then until the frame time
+  // has settled, at most `warmup_ms_max` (0 and 0: frames only). A GPU that idled while the host built the groom can
+  // take a second to climb back to its working clock; frames timed on the climb read up to 2.2x slow.
+  double warmup_ms = 500, warmup_ms_max = 5000;
   TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
   TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
   bool validation = false;
