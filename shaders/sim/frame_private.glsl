@@ -1,10 +1,10 @@
 // The one-thread frame kernel (frame.glsl) with the strand's state in private arrays (registers, or the GPU's
-// per-thread local memory when they do not fit): one thread per guide, 32 threads = one strand block of the layout.
+// per-thread local memory when they do not fit): one thread per guide, in workgroups of 32 or 512 threads (sim/fused.hpp).
 // frame.comp compiles it for grooms without follow hairs, frame_follows.comp with them (TVK_FOLLOWS).
 #ifndef TRESSVK_SIM_FRAME_PRIVATE_GLSL
 #define TRESSVK_SIM_FRAME_PRIVATE_GLSL
 #include "sim/layout.glsl"
-layout(local_size_x = 32) in;
+layout(local_size_x_id = 0) in;  // WORKGROUP_SIZE: a multiple of 32 strands (sim/fused.cpp, frame_private_workgroup)
 
 vec4 s_pos[N];
 vec4 s_prev[N];

@@ -73,3 +73,26 @@ TEST_CASE("the conservative shape's subgroup variant packs as many strands as th
   CHECK(conservative_slots(32, 32, 1024, 3000) == 0);
   CHECK(conservative_slots(8, 32, 1024, 4000) == 0);  // 2 strands fit, a subgroup holds 4
 }
+
+TEST_CASE("the one-thread kernel runs in workgroups of 512 from 64 Ki guides", "[plugin][simulation]") {
+  using tressvk::sim::frame_dispatch_groups;
+  using tressvk::sim::frame_pass_use;
+  using tressvk::sim::frame_private_workgroup;
+  tressvk::sim::SceneTerms terms;
+  terms.vsp = true;
+  terms.local_shape = true;
+  // H100, 240 Hz, us per frame, workgroups of 32 against 512 (fused.cpp): 1 M guide vertices 612 against 639, so 32;
+  // 2 M without VSP 1,175 against 891 (with every pass 902 / 901), 4 M 2,320 against 1,761 (1,775 / 1,786), so 512.
+  const auto narrow = frame_pass_use(terms, false, 32768);
+  CHECK(frame_private_workgroup(narrow) == 32);
+  CHECK(frame_dispatch_groups(narrow, 32768) == 1024);
+  CHECK(narrow.name.rfind("frame+", 0) == 0);
+  const auto wide = frame_pass_use(terms, false, 65536);
+  CHECK(frame_private_workgroup(wide) == 512);
+  CHECK(frame_dispatch_groups(wide, 65536) == 128);
+  CHECK(frame_dispatch_groups(wide, 65537) == 129);  // the last workgroup's threads past the last guide return
+  CHECK(wide.name.rfind("frame(wide)+", 0) == 0);
+  CHECK(wide.features != narrow.features);  // their own pipelines in the context's cache
+  // A crowd's one-thread kernel (each instance its own dispatch of its own guides) stays narrow.
+  CHECK(frame_private_workgroup(frame_pass_use(terms, false, 2221)) == 32);
+}

@@ -42,6 +42,26 @@ const PassInfo kFrameRuns4 = {PassId::kFrame, "frame", k_spv_frame_runs_comp, si
                               true};
 const PassInfo kFrameRuns8 = kFrameRuns4;
 constexpr uint32_t kLanesVariantBit = 1u << 14;
+// The one-thread kernel in workgroups of 512 threads (FEATURES ignores it). A workgroup of 32 lets the driver give a
+// thread up to 255 registers, and some variants take them: NVIDIA H100 (driver 580.159.04), 240 Hz, curly x 32, the
+// kernel without VSP or without global shape 255 registers where the one with both has 128. Once a groom has enough
+// strands to fill the GPU at 128 registers a thread, 255 halve the threads that run at once, and a scene that needs
+// one pass less ran slower: 4 M guide vertices 1,775 us with every pass, 2,320 without VSP, 2,111 without global
+// shape. A workgroup of 512 allows at most 128 (65,536 registers an SM): 1,786 / 1,761 / 1,681 us (bare, no VSP,
+// global shape, clamp or local shape: 1,361 -> 1,197); 3 M 1,498 -> 1,523 with every pass, 1,745 -> 1,498 without
+// VSP; 2 M 902 -> 901, 1,175 -> 891. With fewer strands, a workgroup of 512 leaves SMs without work: 1 M 612 -> 639
+// us (without VSP 605 -> 635), a crowd of 64 Ratboys (each instance its own dispatch of 2,221 guides) 1,959 -> 1,978.
+// So: 512 from 64 Ki guides (docs/simulation.md, "The one-thread kernel's workgroup").
+constexpr uint32_t kFrameWideBit = 1u << 11;
+// TRESSVK_SIM_FRAME_WG=32|512 forces the one-thread kernel's workgroup (for measurement); unset, the rule decides.
+uint32_t frame_workgroup_from_environment() {
+  static const uint32_t wg = [] {
+    const char* v = std::getenv("TRESSVK_SIM_FRAME_WG");
+    const uint32_t w = v ? static_cast<uint32_t>(std::strtoul(v, nullptr, 10)) : 0u;
+    return w == kStrandBlock || w == kFrameWideWorkgroup ? w : 0u;
+  }();
+  return wg;
+}
 // The run kernel's pipelines, and its run of 4 (FEATURES ignores both).
 constexpr uint32_t kRunsBit = 1u << 12;
 constexpr uint32_t kRuns4Bit = 1u << 13;
@@ -121,9 +141,14 @@ uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool /*vsp*/) {
   return kStrandBlock * vertices_per_strand * 16u * 2u;
 }
 
-PassUse frame_pass_use(const SceneTerms& terms, bool shared) {
+PassUse frame_pass_use(const SceneTerms& terms, bool shared, uint32_t guide_count) {
   PassUse use{shared ? &kFrameShared : terms.follow ? &kFramePrivateFollows : &kFramePrivate, "frame", terms.features,
               terms.capsule_count};
+  const uint32_t forced = frame_workgroup_from_environment();
+  if (!shared && guide_count > 0 && (forced ? forced == kFrameWideWorkgroup : guide_count >= kFrameWideMinGuides)) {
+    use.features |= kFrameWideBit;
+    use.name = "frame(wide)";
+  }
   if (terms.vsp) use.features |= kFeatureVsp;
   if (terms.local_shape) use.features |= kFeatureLocalShape;
   if (shared) use.features |= kSharedVariantBit;
@@ -139,7 +164,14 @@ PassUse frame_pass_use(const SceneTerms& terms, bool shared) {
   return use;
 }
 
-uint32_t frame_dispatch_groups(uint32_t guide_count) { return (guide_count + kStrandBlock - 1) / kStrandBlock; }
+bool is_frame_private(const PassInfo* info) { return info == &kFramePrivate || info == &kFramePrivateFollows; }
+uint32_t frame_private_workgroup(const PassUse& use) {
+  return (use.features & kFrameWideBit) ? kFrameWideWorkgroup : kStrandBlock;
+}
+uint32_t frame_dispatch_groups(const PassUse& use, uint32_t guide_count) {
+  const uint32_t wg = is_frame_private(use.info) ? frame_private_workgroup(use) : kStrandBlock;
+  return (guide_count + wg - 1) / wg;
+}
 
 LanesBackend lanes_backend_from_environment() {
   static const LanesBackend backend = [] {

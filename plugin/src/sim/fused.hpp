@@ -31,10 +31,18 @@ uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool vsp);
 
 // The frame pass of a scene: FEATURES = the scene's feature bits plus kFeatureVsp / kFeatureLocalShape.
 // shared: the shared-memory variant (the caller checked that it fits).
-PassUse frame_pass_use(const SceneTerms& terms, bool shared);
+// guide_count: the instance's guides, which choose the one-thread kernel's workgroup (0: the narrow one).
+PassUse frame_pass_use(const SceneTerms& terms, bool shared, uint32_t guide_count = 0);
 
 // Workgroups of the frame pass: one per strand block of 32 guides.
-uint32_t frame_dispatch_groups(uint32_t guide_count);
+uint32_t frame_dispatch_groups(const PassUse& use, uint32_t guide_count);
+// The one-thread kernel (frame.comp, frame_follows.comp) runs in workgroups of 32 threads, or of 512 from
+// kFrameWideMinGuides guides (named "frame(wide)"): a workgroup of 512 holds the driver to 128 registers a thread
+// (fused.cpp has the measurements). TRESSVK_SIM_FRAME_WG=32|512 forces either.
+constexpr uint32_t kFrameWideWorkgroup = 512;
+constexpr uint32_t kFrameWideMinGuides = 64u * 1024u;
+uint32_t frame_private_workgroup(const PassUse& use);
+bool is_frame_private(const PassInfo* info);
 
 // The compliant model's lane-parallel frame kernel (frame_lanes.glsl, TRESSVK_SIM_MODEL=compliant), one lane per
 // vertex, in two variants: subgroup (a strand is a cluster of lanes of one subgroup, values move by shuffles;

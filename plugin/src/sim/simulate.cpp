@@ -135,7 +135,8 @@ TvkResult get_pipeline(Context& ctx, const PassUse& use, uint32_t n, uint32_t k,
   const uint32_t wg = sim::is_frame_lanes(use.info)
                          ? sim::frame_lanes_workgroup(use.info, n, ctx.subgroup_size, conservative_slots(ctx, n),
                                                       (use.features & sim::kFeatureConservative) != 0)
-                         : ctx.workgroup_size;
+                     : sim::is_frame_private(use.info) ? sim::frame_private_workgroup(use)
+                                                       : ctx.workgroup_size;
   // Constant 5: the run kernel's RUN (other shaders have no constant 5, which Vulkan allows).
   const std::array<uint32_t, 6> values = {wg, n, k, use.features, use.capsule_count, sim::frame_run_length(use.info)};
   std::array<VkSpecializationMapEntry, 6> entries{};
@@ -283,7 +284,7 @@ std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& in
   const bool shared = path == sim::SimPath::kFusedShared &&
                       sim::frame_shared_bytes(inst.asset->rest.vertices_per_strand, terms.vsp) <=
                           ctx.device_properties.limits.maxComputeSharedMemorySize;
-  return {sim::frame_pass_use(terms, shared)};
+  return {sim::frame_pass_use(terms, shared, inst.asset->rest.guide_count)};
 }
 
 // The follow-the-leader instances of one tressvk_cmd_simulate call and their guide vertices (the crowd rule).
@@ -523,7 +524,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
                                                             ctx.subgroup_size,
                                                             conservative_slots(ctx, rest.vertices_per_strand),
                                                             (u->features & sim::kFeatureConservative) != 0)
-                              : fused                       ? sim::frame_dispatch_groups(rest.guide_count)
+                              : fused                       ? sim::frame_dispatch_groups(*u, rest.guide_count)
                                     : sim::dispatch_groups(u->info->granularity, rest.guide_count,
                                                            rest.vertices_per_strand, rest.follow_per_guide,
                                                            ctx.workgroup_size);
