@@ -9,7 +9,7 @@
 # BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default: build/portable). DATADIR holds
 # tressfx/ratboy/Ratboy_mohawk.tfx (+ .tfxbone) for the Ratboy row (default: data/ beside the repository).
 # Writes one JSON file per run, table.md (the table) and sweep.md. Single tables instead: MODELS=1, SLEEP=1,
-# CROWD=1, CROWD_RULE=1, CHOICE=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
+# CROWD=1, CROWD_RULE=1, CHOICE=1, TERMS=1, FRAME_WG=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
 # starting new sweep runs once spent, so that the whole script fits a bounded GPU session; rows not run are absent.
 set -euo pipefail
 OUT=${1:?usage: gpu-perf.sh OUTDIR [BINDIR [DATADIR]]}
@@ -160,6 +160,65 @@ if [ "${CHOICE:-0}" = 1 ]; then
     perf "choice-curly4M-default" default --builtin curly --guides 131072 $T
     perf "choice-curly4M-conservative120" default --builtin curly --guides 131072 $REC $T
   } | tee "$OUT/choice.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# TERMS=1: only "Where a frame's time goes" (docs/simulation.md): each term switched off in turn (parameter files
+# written to OUTDIR) on curly 1 M guide vertices and on Ratboy at 240 Hz, the 60 Hz frame with every term and bare,
+# and 4 M with every term and bare.
+if [ "${TERMS:-0}" = 1 ]; then
+  echo '{"simulation":{"vsp_coefficient":0}}' > "$OUT/novsp.json"
+  echo '{"simulation":{"global_stiffness":0}}' > "$OUT/noglobal.json"
+  echo '{"simulation":{"max_speed":0}}' > "$OUT/noclamp.json"
+  echo '{"simulation":{"vsp_coefficient":0,"global_stiffness":0,"max_speed":0,"local_iterations":0}}' > "$OUT/bare.json"
+  P="--frames 200 --warmup 60 --error-frames 1"
+  {
+    table_header
+    for g in curly1M ratboy; do
+      case $g in
+        ratboy) [ -f "$MOHAWK" ] || continue; G=(--asset "$MOHAWK") ;;
+        curly1M) G=(--builtin curly --guides 32768) ;;
+      esac
+      perf "terms-$g-all" default "${G[@]}" --scene shake $P
+      perf "terms-$g-lit0" default "${G[@]}" --scene shake --local-iterations 0 $P
+      perf "terms-$g-lit1" default "${G[@]}" --scene shake --local-iterations 1 $P
+      perf "terms-$g-lit4" default "${G[@]}" --scene shake --local-iterations 4 $P
+      perf "terms-$g-len2" default "${G[@]}" --scene shake --length-iterations 2 $P
+      for p in novsp noglobal noclamp bare; do
+        perf "terms-$g-$p" default "${G[@]}" --scene shake --params "$OUT/$p.json" $P
+      done
+      perf "terms-$g-settle" default "${G[@]}" --scene settle --sleep-below 0 $P
+      perf "terms-$g-60" default "${G[@]}" --scene shake --step-rate 60 $P
+      perf "terms-$g-60bare" default "${G[@]}" --scene shake --step-rate 60 --params "$OUT/bare.json" $P
+    done
+    perf "terms-curly4M-all" default --builtin curly --guides 131072 --scene shake $P
+    perf "terms-curly4M-bare" default --builtin curly --guides 131072 --scene shake --params "$OUT/bare.json" $P
+  } | tee "$OUT/terms.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# FRAME_WG=1: only the one-thread kernel's workgroup table (docs/simulation.md, "The one-thread kernel's workgroup"):
+# curly 1, 2, 3 and 4 M guide vertices at 240 Hz with workgroups of 32 and of 512 (TRESSVK_SIM_FRAME_WG), every term
+# and VSP off; at 4 M also global shape off and bare.
+if [ "${FRAME_WG:-0}" = 1 ]; then
+  echo '{"simulation":{"vsp_coefficient":0}}' > "$OUT/novsp.json"
+  echo '{"simulation":{"global_stiffness":0}}' > "$OUT/noglobal.json"
+  echo '{"simulation":{"vsp_coefficient":0,"global_stiffness":0,"max_speed":0,"local_iterations":0}}' > "$OUT/bare.json"
+  P="--scene shake --frames 200 --warmup 60 --error-frames 1"
+  {
+    table_header
+    for wg in 32 512; do
+      for guides in 32768 65536 98304 131072; do
+        for p in all novsp noglobal bare; do
+          [ $guides != 131072 ] && { [ $p = noglobal ] || [ $p = bare ]; } && continue
+          A=(); [ $p != all ] && A=(--params "$OUT/$p.json")
+          TRESSVK_SIM_FRAME_WG=$wg perf "wg$wg-curly$guides-$p" default --builtin curly --guides $guides "${A[@]}" $P
+        done
+      done
+    done
+  } | tee "$OUT/frame_wg.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi

@@ -34,7 +34,8 @@ uint32_t frame_shared_bytes(uint32_t vertices_per_strand, bool vsp);
 // guide_count: the instance's guides, which choose the one-thread kernel's workgroup (0: the narrow one).
 PassUse frame_pass_use(const SceneTerms& terms, bool shared, uint32_t guide_count = 0);
 
-// Workgroups of the frame pass: one per strand block of 32 guides.
+// Workgroups of the frame pass: one per 32 guides (a strand block), or per 512 for the one-thread kernel's wide
+// variant (frame_private_workgroup).
 uint32_t frame_dispatch_groups(const PassUse& use, uint32_t guide_count);
 // The one-thread kernel (frame.comp, frame_follows.comp) runs in workgroups of 32 threads, or of 512 from
 // kFrameWideMinGuides guides (named "frame(wide)"): a workgroup of 512 holds the driver to 128 registers a thread
