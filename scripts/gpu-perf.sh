@@ -262,6 +262,8 @@ S="--scene shake --frames 120 --warmup 30 --error-frames 1"
         if [ "$path" = default ] && [ "$guides" -gt 24576 ] && [[ " ${SWEEP_PATHS:-default fused passes} " == *" fused "* ]]; then
           continue
         fi
+        # SWEEP_PASSES_MIN: the pass-per-dispatch rows from that many guides only (the plot of docs/simulation.md).
+        if [ "$path" = passes ] && [ "$guides" -lt "${SWEEP_PASSES_MIN:-0}" ]; then continue; fi
         if [ "$SECONDS" -gt "$BUDGET" ]; then echo "| budget of ${BUDGET} s spent: curly $guides x 32 at $rate Hz ($path) not run |"; continue; fi
         perf "sweep-$path-$guides-$rate" "$path" --builtin curly --guides "$guides" --step-rate "$rate" $S
       done

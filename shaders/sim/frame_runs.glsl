@@ -110,7 +110,8 @@ void local_shape_run_step(bool turns, float rest_in, vec3 edge, float s, inout v
 // Ratboy at 240 Hz, runs of 4: 212 us, 59 of them without local shape; turning: 136 us). The sweep's step is small:
 // unrolled it measured faster than turning (Ratboy 136.5 -> 129.8 us, curly 1 M in runs of 8 690 -> 608 us at 240 Hz),
 // and so did reading local shape's rest data from memory instead of turning it in registers on 1 M at 240 Hz only
-// (608 -> 556 us; Ratboy 130 -> 139, 1 M at 60 Hz 224 -> 228): not kept.
+// (608 -> 556 us; Ratboy 130 -> 139, 1 M at 60 Hz 224 -> 228): not kept; on later kernels it lost everywhere
+// (docs/simulation.md, "The run kernel").
 void turn_run_shape() {
   vec4 p0 = R_pos[0];
   vec3 e0 = R_edge[0];
