@@ -11,7 +11,7 @@ void main() {
   uvec2 sv = element_strand_vertex(i);  // threads walk the follow strands 0 .. G*K-1 in the blocked order
   uint strand = sv.x;
   uint v = sv.y;
-  if (strand >= G * K) return;
+  if (strand >= G * K || G + strand >= pc.follow_strands) return;
   uint f = strand / G;
   uint g = strand - f * G;
   GroupParams gp = guide_params(g);

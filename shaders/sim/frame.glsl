@@ -16,6 +16,7 @@
 #define TVK_FRAME_KERNEL 1
 #ifdef TVK_FOLLOWS
 #define TVK_FOLLOW_TANGENTS 1  // follows take their guide's tangent as it is written (length.glsl, write_tangent)
+uint tvk_follow_layers;        // follow_layers of the thread's guide: the follows written
 #endif
 vec4 tvk_anchor_now;  // this substep's anchor of the thread's guide (integrate writes it, collision reads it)
 uint tvk_step;        // this substep's index into step_params
@@ -62,6 +63,9 @@ void main() {
   note_awake();
   frame_storage_begin(g);
   uint b = strand_base(g);
+#ifdef TVK_FOLLOWS
+  tvk_follow_layers = follow_layers(pc.guide_count, g);
+#endif
   for (uint v = 0u; v < N; ++v) {
     uint i = b + v * TVK_BLOCK;
     TVK_POS(i) = pos[i];
@@ -87,6 +91,7 @@ void main() {
     prev[i] = TVK_PREV(i);
 #ifdef TVK_FOLLOWS
     for (uint f = 0u; f < K; ++f) {
+      if (f >= tvk_follow_layers) break;
       uint dst = vertex_index(follow_strand(pc.guide_count, g, f), v);
       pos[dst] = follow_vertex(TVK_POS(i), follow_offset_of[f], tip_separation, v);
     }

@@ -311,7 +311,8 @@ void main() {
     vec4 root_now = lanes_root_frame(g, b, v);
     float tip_separation = gp.tip_separation;
     uint G = pc.guide_count;
-    for (uint f = 0u; f < K && vert && tvk_active; ++f) {
+    uint layers = follow_layers(G, g);
+    for (uint f = 0u; f < layers && vert && tvk_active; ++f) {
       vec3 offset = quat_rotate(root_now, follow_offset[g * K + f].xyz);  // follow_root_offset, the lanes' root frame
       uint dst = vertex_index(follow_strand(G, g, f), v);
       pos[dst] = follow_vertex(L_pos, offset, tip_separation, v);

@@ -357,7 +357,8 @@ void main() {
     vec4 root_now = runs_root_frame(g, b);
     float tip_separation = gp.tip_separation;
     uint G = pc.guide_count;
-    for (uint f = 0u; f < K; ++f) {
+    uint layers = follow_layers(G, g);
+    for (uint f = 0u; f < layers; ++f) {
       vec3 offset = quat_rotate(root_now, follow_offset[g * K + f].xyz);  // follow_root_offset, lane 0's root frame
       [[unroll]] for (uint k = 0u; k < RUN; ++k) {
         uint v = vtx(k);

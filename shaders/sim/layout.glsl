@@ -127,7 +127,7 @@ const uint kAwakeBit = TVK_COUNTER_AWAKE_BIT;
 // Per guide: xyz its anchor in simulation space (the skinned rest root at the current step), w = 0.
 layout(std430, set = 0, binding = 16) buffer Anchors { vec4 anchor[]; };
 
-layout(push_constant) uniform PushConstants {   // 32 bytes
+layout(push_constant) uniform PushConstants {   // 36 bytes
   uint guide_count;     // G: dispatches cover exactly G guides' work, every thread bounds-checks
   uint step_index;      // index into step_params
   uint skin_base;       // first vec4 of this substep's skinning data in skin[]
@@ -136,7 +136,15 @@ layout(push_constant) uniform PushConstants {   // 32 bytes
   uint step_count;      // fused frame kernel: substeps to run (step_index .. step_index + step_count - 1)
   uint skin_stride;     // fused frame kernel: vec4 of skinning data per substep
   float rest_move;      // fused frame kernels: in a still frame, the sleeping threshold (m per step, below); else 0
+  uint follow_strands;  // rendered strands whose follow hairs are written (a prefix: guides, then follow layers)
 } pc;
+// The follow layers of guide g among the strands the host draws this frame (tressvk_set_draw_strands): follow f is
+// written iff f < follow_layers (its strand G + f G + g below pc.follow_strands); the renderer draws no more strands
+// than the last frame that ran wrote. Once per guide, so that a groom drawn whole pays a compare per follow only.
+uint follow_layers(uint G, uint g) {
+  uint first = G + g;  // layer 0's strand of guide g
+  return pc.follow_strands > first ? min(K, (pc.follow_strands - first + G - 1u) / G) : 0u;
+}
 
 // ---- sleeping strands (the fused frame kernels; the pass-per-dispatch path never sleeps) -------------------------
 // A frame is still when the host finds that every input its steps see (skinning, step and group parameters) is the

@@ -131,7 +131,8 @@ void solve_tip_pinned(uint b) {
 #ifdef TVK_FOLLOW_TANGENTS
 void write_tangent(uint g, uint b, uint v, vec4 t) {
   tangent[b + v * TVK_BLOCK] = t;
-  for (uint f = 0u; f < K; ++f) tangent[vertex_index(follow_strand(pc.guide_count, g, f), v)] = t;
+  for (uint f = 0u; f < K && f < tvk_follow_layers; ++f)
+    tangent[vertex_index(follow_strand(pc.guide_count, g, f), v)] = t;
 }
 #else
 #define write_tangent(g, b, v, t) tangent[(b) + (v) * TVK_BLOCK] = (t)

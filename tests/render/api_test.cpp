@@ -13,6 +13,36 @@
 #include <string>
 #include <vector>
 
+namespace {
+
+// A built-in groom loaded through the plugin (its upload recorded and waited for).
+TvkAsset load_builtin(TvkContext ctx, const char* name, const tressvk::baker::BuiltinGroomOptions& options) {
+  const std::vector<std::byte> bytes = tressvk::asset::write(tressvk::baker::make_builtin_groom(name, options));
+  TvkAsset asset = nullptr;
+  tressvk::test::run_commands([&](VkCommandBuffer cmd) {
+    TvkAssetLoadInfo li{};
+    li.struct_size = sizeof(li);
+    li.data = bytes.data();
+    li.size = bytes.size();
+    li.upload_command_buffer = cmd;
+    REQUIRE(tressvk_load_asset(ctx, &li, &asset) == TVK_SUCCESS);
+  });
+  return asset;
+}
+
+// A renderer of the shading passes into RGBA8 with a 32-bit depth.
+TvkRenderer create_rgba8_renderer(TvkContext ctx) {
+  TvkRendererCreateInfo ri{};
+  ri.struct_size = sizeof(ri);
+  ri.shading.color_format = VK_FORMAT_R8G8B8A8_UNORM;
+  ri.shading.depth_format = VK_FORMAT_D32_SFLOAT;
+  TvkRenderer renderer = nullptr;
+  REQUIRE(tressvk_create_renderer(ctx, &ri, &renderer) == TVK_SUCCESS);
+  return renderer;
+}
+
+}  // namespace
+
 TEST_CASE("render API: invalid arguments are refused with a message", "[render][vulkan]") {
   auto ctx = tressvk::test::create_plugin_context();
   TvkRenderer renderer = nullptr;
@@ -54,17 +84,7 @@ TEST_CASE("render API: two instances with their own materials in one pass", "[re
   auto ctx = tressvk::test::create_plugin_context();
   tressvk::baker::BuiltinGroomOptions groom_options;
   groom_options.guide_count = 200;
-  const std::vector<std::byte> bytes =
-      tressvk::asset::write(tressvk::baker::make_builtin_groom("straight", groom_options));
-  TvkAsset asset = nullptr;
-  tressvk::test::run_commands([&](VkCommandBuffer cmd) {
-    TvkAssetLoadInfo li{};
-    li.struct_size = sizeof(li);
-    li.data = bytes.data();
-    li.size = bytes.size();
-    li.upload_command_buffer = cmd;
-    REQUIRE(tressvk_load_asset(ctx.get(), &li, &asset) == TVK_SUCCESS);
-  });
+  TvkAsset asset = load_builtin(ctx.get(), "straight", groom_options);
   TvkInstance heads[2] = {};
   for (TvkInstance& h : heads) {
     TvkInstanceCreateInfo ic{};
@@ -72,12 +92,7 @@ TEST_CASE("render API: two instances with their own materials in one pass", "[re
     ic.asset = asset;
     REQUIRE(tressvk_create_instance(ctx.get(), &ic, &h) == TVK_SUCCESS);
   }
-  TvkRendererCreateInfo ri{};
-  ri.struct_size = sizeof(ri);
-  ri.shading.color_format = VK_FORMAT_R8G8B8A8_UNORM;
-  ri.shading.depth_format = VK_FORMAT_D32_SFLOAT;
-  TvkRenderer renderer = nullptr;
-  REQUIRE(tressvk_create_renderer(ctx.get(), &ri, &renderer) == TVK_SUCCESS);
+  TvkRenderer renderer = create_rgba8_renderer(ctx.get());
 
   constexpr uint32_t kW = 128, kH = 64;
   const auto target = tressvk::engine::create_offscreen_target(dev, kW, kH, VK_FORMAT_R8G8B8A8_UNORM);
@@ -155,5 +170,81 @@ TEST_CASE("render API: two instances with their own materials in one pass", "[re
   vkDeviceWaitIdle(dev.device());
   tressvk_destroy_renderer(renderer);
   for (TvkInstance h : heads) tressvk_destroy_instance(h);
+  tressvk_destroy_asset(asset);
+}
+
+TEST_CASE("render API: a draw takes no more strands than the simulation wrote follow hairs for", "[render][vulkan]") {
+  // tressvk_get_draw_strands says what a draw's LOD takes; tressvk_set_draw_strands limits the follow hairs the
+  // simulation writes, and a draw never takes strands whose follows the last frame that ran did not write.
+  auto& dev = tressvk::test::device();
+  auto ctx = tressvk::test::create_plugin_context();
+  tressvk::baker::BuiltinGroomOptions groom_options;
+  groom_options.guide_count = 60;
+  groom_options.follow_per_guide = 2;
+  groom_options.vertices_per_strand = 8;
+  TvkAsset asset = load_builtin(ctx.get(), "straight", groom_options);
+  TvkInstance inst = nullptr;
+  TvkInstanceCreateInfo ic{};
+  ic.struct_size = sizeof(ic);
+  ic.asset = asset;
+  REQUIRE(tressvk_create_instance(ctx.get(), &ic, &inst) == TVK_SUCCESS);
+  TvkRenderer renderer = create_rgba8_renderer(ctx.get());
+  constexpr uint32_t kW = 64, kH = 64;
+  const auto target = tressvk::engine::create_offscreen_target(dev, kW, kH, VK_FORMAT_R8G8B8A8_UNORM);
+  TvkView view{};
+  const double vp[16] = {2.5, 0, 0, 0, 0, -2.5, 0, 0, 0, 0, -0.5, 0, 0, 0, 0.5, 1};
+  std::copy(std::begin(vp), std::end(vp), view.view_projection);
+  view.eye[2] = 1.0;  // 1 m from the instance's origin
+  view.orthographic = 1;
+  view.direction[2] = -1.0f;
+  view.width = kW;
+  view.height = kH;
+  TvkDrawInfo di{};
+  di.struct_size = sizeof(di);
+  di.instance = inst;
+  di.view = &view;
+
+  uint32_t strands = 0;
+  CHECK(tressvk_get_draw_strands(renderer, nullptr, &strands) == TVK_ERROR_INVALID_ARGUMENT);
+  CHECK(std::string(tressvk_last_error(ctx.get())).find("tressvk_get_draw_strands") != std::string::npos);
+  REQUIRE(tressvk_get_draw_strands(renderer, &di, &strands) == TVK_SUCCESS);
+  CHECK(strands == 180);  // LOD off: every rendered strand
+  di.lod.start_distance = 0.5f;  // by distance: at 1 m, halfway to 1.5 m, 1 - 0.5 * 0.75 of the strands
+  di.lod.end_distance = 1.5f;
+  di.lod.min_fraction = 0.25f;
+  REQUIRE(tressvk_get_draw_strands(renderer, &di, &strands) == TVK_SUCCESS);
+  CHECK(strands == 113);  // ceil(0.625 * 180)
+
+  const auto frame_with = [&](uint32_t draw_strands) {
+    REQUIRE(tressvk_set_draw_strands(inst, draw_strands) == TVK_SUCCESS);
+    tressvk::test::run_commands([&](VkCommandBuffer cmd) {
+      REQUIRE(tressvk_new_frame(ctx.get()) == TVK_SUCCESS);
+      TvkSimFrame frame{};
+      frame.dt = 1.0f / 60.0f;
+      frame.transform.rotation[3] = 1.0;
+      REQUIRE(tressvk_set_frame(inst, &frame) == TVK_SUCCESS);
+      TvkSimulateInfo si{};
+      si.struct_size = sizeof(si);
+      si.instance_count = 1;
+      si.instances = &inst;
+      REQUIRE(tressvk_cmd_simulate(ctx.get(), cmd, &si) == TVK_SUCCESS);
+      tressvk::engine::cmd_begin_rendering(cmd, target, {});
+      REQUIRE(tressvk_cmd_draw_hair(renderer, cmd, &di) == TVK_SUCCESS);
+      tressvk::engine::cmd_end_rendering(cmd);
+    });
+    return tressvk_get_last_drawn_strands(renderer);
+  };
+  CHECK(frame_with(60) == 60);  // the guides' follows not written: the LOD's 113 would draw stale ones
+  // Distances are from the instance's simulation origin, which its first frame placed at the groom: the LOD's count
+  // once simulated.
+  REQUIRE(tressvk_get_draw_strands(renderer, &di, &strands) == TVK_SUCCESS);
+  CHECK(strands > 60);
+  CHECK(frame_with(strands) == strands);  // what the LOD takes, all of it written
+  di.lod = TvkLodSettings{};
+  CHECK(frame_with(0) == 180);    // every strand
+
+  vkDeviceWaitIdle(dev.device());
+  tressvk_destroy_renderer(renderer);
+  tressvk_destroy_instance(inst);
   tressvk_destroy_asset(asset);
 }

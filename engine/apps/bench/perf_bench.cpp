@@ -107,6 +107,10 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
                    "is the first one's")
       ->capture_default_str()
       ->check(CLI::Range(1, 4096));
+  perf->add_option("--draw-strands", cmd.draw_strands,
+                   "rendered strands (guides, then follow layers) whose follow hairs are simulated, as a host drawing "
+                   "that many by LOD sets (tressvk_set_draw_strands); 0 = all. The step error covers those strands")
+      ->capture_default_str();
   add_simulation_options(*perf, cmd.params, cmd.settings);
   perf->add_option("--params", cmd.params_path, "JSON parameter file (as compare --params)")->check(CLI::ExistingFile);
   perf->add_option("--json", cmd.json_path, "write the results as JSON");
@@ -173,8 +177,16 @@ int execute_perf_command(const PerfCommand& given) {
     ic.settings = &cmd.settings;
     ic.params = &cmd.params;
     std::vector<TvkInstance> crowd(cmd.instances, nullptr);
-    for (TvkInstance& i : crowd) host::check_tvk(tressvk_create_instance(ctx, &ic, &i), ctx, "tressvk_create_instance");
+    for (TvkInstance& i : crowd) {
+      host::check_tvk(tressvk_create_instance(ctx, &ic, &i), ctx, "tressvk_create_instance");
+      host::check_tvk(tressvk_set_draw_strands(i, cmd.draw_strands), ctx, "tressvk_set_draw_strands");
+    }
     TvkInstance inst = crowd.front();
+    // The strands the step error covers: the written ones.
+    const uint32_t rendered = groom.guide_count() * (1u + groom.follow_per_guide);
+    const size_t written_vertices =
+        size_t{cmd.draw_strands == 0 ? rendered : std::max(cmd.draw_strands, groom.guide_count())} *
+        groom.vertices_per_strand;
 
     const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), cmd.params);
     reference::Simulator ref(groom, params, cmd.settings);  // planner in step; loaded from the GPU for the error
@@ -236,8 +248,9 @@ int execute_perf_command(const PerfCommand& given) {
         host::check_tvk(host::record_simulate(ctx, c, std::span<const TvkInstance>(crowd)), ctx, "tressvk_cmd_simulate");
       });
       const host::HairState after = host::read_hair_state(dev, inst);
-      const auto err = reference::position_error(std::span<const std::array<double, 3>>(after.positions),
-                                                 ref.positions(), median_length);
+      const auto err = reference::position_error(
+          std::span<const std::array<double, 3>>(after.positions).first(written_vertices),
+          ref.positions().first(written_vertices), median_length);
       step_error = std::max(step_error, err.max_rel);
       ++error_frames;
     }
@@ -283,6 +296,7 @@ int execute_perf_command(const PerfCommand& given) {
         {"copy_ms", copy.ms},
         {"copy_gb_per_s", copy.gb_per_s},
         {"step_error_max_rel", step_error},
+        {"draw_strands", cmd.draw_strands},
         {"step_error_frames", error_frames},
     };
 

@@ -18,6 +18,7 @@ struct PerfCommand {
   std::string asset_path, builtin, scene = "shake", json_path, device, params_path;
   uint32_t frames = 300, warmup = 60, frames_in_flight = 3, error_frames = 3;
   uint32_t guides = 64, follows = 0, vertices = 0;
+  uint32_t draw_strands = 0;  // rendered strands whose follow hairs are simulated (tressvk_set_draw_strands; 0 = all)
   uint32_t instances = 1;  // instances of the groom simulated in one tressvk_cmd_simulate a frame (a crowd)
   // Warm-up (frame_timing.hpp, WarmUp): at least `warmup` frames and `warmup_ms` of GPU work, then until the frame time
   // has settled, at most `warmup_ms_max` (0 and 0: frames only). A GPU that idled while the host built the groom can

@@ -262,6 +262,19 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const VkCommandBuffer cmd = frame.cmd;
   frame.timestamps->cmd_write(cmd, 0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
   const TvkInstance instance = hair_->instance();
+  // Follow hairs only for the strands this frame draws: the camera's LOD count (the shadow draws the same strands).
+  uint32_t draw_strands = 0;
+  if (lod.target_width_px > 0.0f || lod.end_distance > lod.start_distance) {
+    TvkDrawInfo lod_di{};
+    lod_di.struct_size = sizeof(lod_di);
+    lod_di.instance = instance;
+    lod_di.view = &camera;
+    lod_di.materials = &material_;
+    lod_di.material_count = 1;
+    lod_di.lod = lod;
+    check_tvk(tressvk_get_draw_strands(hair_->renderer(), &lod_di, &draw_strands), ctx, "tressvk_get_draw_strands");
+  }
+  check_tvk(tressvk_set_draw_strands(instance, draw_strands), ctx, "tressvk_set_draw_strands");
   check_tvk(host::record_simulate(ctx, cmd, instance), ctx, "tressvk_cmd_simulate");
   frame.timestamps->cmd_write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
 

@@ -282,6 +282,10 @@ typedef struct TvkRasterCapture {
 } TvkRasterCapture;
 TVK_API TvkResult tressvk_get_raster_capture(TvkRenderer renderer, TvkRasterCapture* out_capture);
 
+/* The strands a draw with `info` would draw by its LOD (a prefix of the rendered strands), before the simulation's
+ * limit (tressvk_set_draw_strands): call it with the frame's camera before tressvk_cmd_simulate and hand the largest
+ * count of the frame's draws to tressvk_set_draw_strands. */
+TVK_API TvkResult tressvk_get_draw_strands(TvkRenderer renderer, const TvkDrawInfo* info, uint32_t* out_strands);
 /* Strands the last draw call of `renderer` drew (after LOD), for statistics and tests. */
 TVK_API uint32_t tressvk_get_last_drawn_strands(TvkRenderer renderer);
 

@@ -193,6 +193,13 @@ TVK_API TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSet
 /* This frame's motion, wind and colliders. Call before tressvk_cmd_simulate; the frame is copied. An instance
  * whose frame was not set since its last simulation keeps its pose and advances no time (dt 0). */
 TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame);
+/* Follow hairs only for the strands the host will draw: `strands` is the most rendered strands (a prefix: guides,
+ * then follow layers; tressvk_get_draw_strands gives the count a draw's LOD picks) any draw of the coming frames
+ * takes, and the simulation writes follow hairs below it only: a groom drawn thinned by LOD does not pay for the
+ * follows it does not show. Guides are always simulated. 0 = every rendered strand (the default). Takes effect at
+ * the next tressvk_cmd_simulate; a draw never takes more strands than the last frame that ran steps wrote, so raising
+ * the count shows the new follows from that frame on. */
+TVK_API TvkResult tressvk_set_draw_strands(TvkInstance instance, uint32_t strands);
 
 /* Builds ahead of time the compute pipelines that simulating `frame` will use (NULL: the frame last given to
  * tressvk_set_frame), so that the first tressvk_cmd_simulate does not build them (36 ms on lavapipe). Pipelines depend

@@ -62,6 +62,11 @@ struct TvkInstance_T {
   bool idle = false;
   uint64_t steps = 0, frames = 0;
   uint32_t steps_last_frame = 0;
+  // Follow hairs only for the strands the host draws (tressvk_set_draw_strands): draw_strands is the host's count (0:
+  // every rendered strand); follows_written the rendered strands whose follows the last frame that ran wrote (every
+  // one below it is current), which bounds what the renderer draws.
+  uint32_t draw_strands = 0;
+  uint32_t follows_written = 0;
   tressvk::HazardTracker hazards;
 };
 

@@ -65,6 +65,29 @@ double lod_coverage_fraction(const TvkLodSettings& lod, const TvkView& view, con
 
 }  // namespace
 
+uint32_t lod_strands(const TvkDrawInfo* info, const TvkView& lod_view) {
+  const TvkAsset_T& asset = *info->instance->asset;
+  const auto& origin = info->instance->sim_origin;
+  const uint32_t total = asset.cpu.total_strands();
+  double fraction = 1.0;
+  if (info->lod.target_width_px > 0.0f) {
+    float widest = 0.0f;
+    const TvkHairMaterial default_material = TVK_HAIR_MATERIAL_DEFAULT_INIT;
+    const uint32_t used =
+        std::max<uint32_t>({1u, static_cast<uint32_t>(asset.cpu.groups.size()), info->material_count});
+    for (uint32_t g = 0; g < std::min<uint32_t>(used, TVK_MAX_MATERIALS); ++g)
+      widest = std::max(widest, (!info->materials || info->material_count == 0)
+                                    ? default_material.strand_width
+                                    : info->materials[std::min(g, info->material_count - 1)].strand_width);
+    fraction = lod_coverage_fraction(info->lod, lod_view, origin, widest);
+  } else {
+    const double dx = lod_view.eye[0] - origin[0], dy = lod_view.eye[1] - origin[1], dz = lod_view.eye[2] - origin[2];
+    fraction = lod_fraction(info->lod, std::sqrt(dx * dx + dy * dy + dz * dz));
+  }
+  if (!std::isfinite(fraction)) fraction = 1.0;  // a view the draw itself refuses
+  return std::clamp(static_cast<uint32_t>(std::ceil(fraction * total)), 1u, total);
+}
+
 TvkResult begin_call(TvkRenderer_T& r, const char* fn) {
   Context& ctx = *r.ctx;
   if (const TvkResult lost = ctx.require_device(fn); lost != TVK_SUCCESS) return lost;
@@ -107,23 +130,9 @@ TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_
   const uint32_t n = asset.cpu.vertices_per_strand;
   const uint32_t guides = asset.cpu.guide_count();
   const uint32_t total = asset.cpu.total_strands();
-  const TvkView& lod_view = (shadow_pass && info->lod_view) ? *info->lod_view : view;
-  double fraction = 1.0;
-  if (info->lod.target_width_px > 0.0f) {
-    float widest = 0.0f;
-    const TvkHairMaterial default_material = TVK_HAIR_MATERIAL_DEFAULT_INIT;
-    const uint32_t used =
-        std::max<uint32_t>({1u, static_cast<uint32_t>(asset.cpu.groups.size()), info->material_count});
-    for (uint32_t g = 0; g < std::min<uint32_t>(used, TVK_MAX_MATERIALS); ++g)
-      widest = std::max(widest, (!info->materials || info->material_count == 0)
-                                    ? default_material.strand_width
-                                    : info->materials[std::min(g, info->material_count - 1)].strand_width);
-    fraction = lod_coverage_fraction(info->lod, lod_view, origin, widest);
-  } else {
-    const double dx = lod_view.eye[0] - origin[0], dy = lod_view.eye[1] - origin[1], dz = lod_view.eye[2] - origin[2];
-    fraction = lod_fraction(info->lod, std::sqrt(dx * dx + dy * dy + dz * dz));
-  }
-  drawn = std::clamp(static_cast<uint32_t>(std::ceil(fraction * total)), 1u, total);
+  drawn = lod_strands(info, (shadow_pass && info->lod_view) ? *info->lod_view : view);
+  // No more than the simulation's last frame wrote follow hairs for (tressvk_set_draw_strands).
+  if (inst.follows_written > 0) drawn = std::min(drawn, inst.follows_written);
   dc.counts[0] = n;
   dc.counts[1] = guides;
   dc.counts[2] = drawn;

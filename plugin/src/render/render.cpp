@@ -2,6 +2,7 @@
 // draw.cpp.
 #include "render/render.hpp"
 #include "render/compute/state.hpp"
+#include "core/objects.hpp"
 #include "core/pipelines.hpp"
 
 #include "tressvk_render_spirv.h"
@@ -165,5 +166,18 @@ TvkResult tressvk_prewarm_renderer(TvkRenderer renderer) {
 }
 
 uint32_t tressvk_get_last_drawn_strands(TvkRenderer renderer) { return renderer ? renderer->last_drawn_strands : 0u; }
+
+TvkResult tressvk_get_draw_strands(TvkRenderer renderer, const TvkDrawInfo* info, uint32_t* out_strands) {
+  if (!renderer || !out_strands)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT,
+                                         "tressvk_get_draw_strands: renderer or out_strands is NULL");
+  tressvk::Context& ctx = *renderer->ctx;
+  if (!info || info->struct_size != sizeof(TvkDrawInfo) || !info->instance || !info->view)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_draw_strands: info (struct_size), instance or view missing");
+  if (info->instance->ctx != &ctx)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_draw_strands: the instance belongs to another context");
+  *out_strands = tressvk::render::lod_strands(info, info->lod_view ? *info->lod_view : *info->view);
+  return TVK_SUCCESS;
+}
 
 }  // extern "C"

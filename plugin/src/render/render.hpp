@@ -72,6 +72,8 @@ TvkResult check_draw_info(TvkRenderer_T& r, VkCommandBuffer cmd, const TvkDrawIn
 TvkResult begin_call(TvkRenderer_T& r, const char* fn);
 // The draw's constants: matrices relative to the instance origin, LOD (strands drawn), materials, lights (their
 // shadowed flag kept only when `shadowed`), shadow projection.
+// The strands a draw with `info` takes by its LOD (eye: lod_view), before the simulation's limit.
+uint32_t lod_strands(const TvkDrawInfo* info, const TvkView& lod_view);
 TvkResult fill_constants(TvkRenderer_T& r, const TvkDrawInfo* info, bool shadow_pass, bool shadowed, const char* fn,
                          DrawConstants& dc, uint32_t& drawn);
 // The radius of a sphere around the instance's simulation origin that holds every strand vertex of its last simulated

@@ -212,6 +212,7 @@ struct InstanceWork {
   std::vector<PassUse> passes;
   std::array<uint32_t, 3> dynamic_offsets{};
   float rest_move = 0.0f;  // the push constant: the sleeping threshold in a still frame, else 0
+  uint32_t follow_strands = 0;  // the push constant: rendered strands whose follows this frame writes
   uint32_t counter_index = 0;  // the push constant: this frame slot's word (resets, awake bit)
   bool idle = false;           // every guide asleep and the frame still: nothing to record
 };
@@ -316,7 +317,12 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
     std::memcpy(ring + base + inst.groups_offset + g * sizeof(sim::GroupParams), &groups[g], sizeof(sim::GroupParams));
   }
   // Still or not: every step of this frame against the last step run (a frame without steps leaves that as it was).
-  const bool still = still_and_keep(groups, gpu, work.steps, inst.last_step_inputs);
+  // Follow hairs are written for the strands the host draws: more of them than the last frame that ran wrote is a
+  // change of input (sleeping guides would leave the newly drawn follows unwritten), fewer is not.
+  const uint32_t rendered = inst.asset->rest.guide_count * (1u + inst.asset->rest.follow_per_guide);
+  work.follow_strands = inst.draw_strands == 0 ? rendered : std::clamp(inst.draw_strands, inst.asset->rest.guide_count, rendered);
+  const bool more_follows = work.follow_strands > inst.follows_written;
+  const bool still = still_and_keep(groups, gpu, work.steps, inst.last_step_inputs) && !more_follows;
   if (!gpu.steps.empty())
     std::memcpy(ring + base + inst.steps_offset, gpu.steps.data(), gpu.steps.size() * sizeof(sim::StepParams));
   if (!gpu.skin.empty()) {
@@ -332,6 +338,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
                                 sim::crowd_prefers_one_thread(crowd.instances, crowd.guide_vertices, work.steps));
   // A frame without steps runs nothing and changes nothing: it leaves the count (and idleness) as they were.
   if (work.steps == 0) return TVK_SUCCESS;
+  inst.follows_written = work.follow_strands;
   // The fused frame kernels sleep; one pass per dispatch never does. Still frames in a row: one in kMeasureEvery
   // measures the strands' motion (layout.glsl), the others pass the threshold negated.
   const bool fused = work.passes.size() == 1 && (work.passes.front().info->id == PassId::kFrame);
@@ -517,7 +524,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
       const bool fused = u->info->id == PassId::kFrame;  // all substeps from step 0 in one dispatch
       const uint32_t s = fused ? 0 : per_frame ? w->steps - 1 : step;
       const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, w->counter_index, w->steps,
-                                  w->skin_stride, w->rest_move};
+                                  w->skin_stride, w->rest_move, w->follow_strands};
       ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
       const uint32_t groups = sim::is_frame_lanes(u->info)
                                   ? sim::frame_lanes_groups(u->info, rest.guide_count, rest.vertices_per_strand,

@@ -130,8 +130,9 @@ struct PushConstants {
   uint32_t step_count = 0;   // fused frame kernel: substeps to run
   uint32_t skin_stride = 0;  // fused frame kernel: vec4 of skinning data per substep
   float rest_move = 0;       // fused frame kernels: m per step, > 0 in a still frame (layout.glsl, sleeping strands)
+  uint32_t follow_strands = 0;  // rendered strands whose follow hairs are written (layout.glsl, follow_drawn)
 };
-static_assert(sizeof(PushConstants) == 32);
+static_assert(sizeof(PushConstants) == 36);
 static_assert(sizeof(PushConstants) <= 128);
 
 using Vec4 = std::array<float, 4>;
