@@ -216,7 +216,8 @@ TVK_API TvkResult tressvk_prewarm_instance(TvkInstance instance, const TvkSimFra
  *   i = tvk_vertex_index(s, v, vertices_per_strand)
  * and lies at anchors[s % guide_count].xyz + positions[i].xyz in simulation space (world axes, origin at `origin`),
  * at origin + that in the world. Positions are kept relative to each guide's anchor (its skinned root) so that
- * float32 rounding is relative to the strand, not to the character. Buffers hold whole blocks. */
+ * float32 rounding is relative to the strand, not to the character. Buffers hold whole blocks. Follow strands at or
+ * above a count given to tressvk_set_draw_strands are not written and hold stale values. */
 #define TVK_STRAND_BLOCK 32u
 static inline uint64_t tvk_vertex_index(uint64_t strand, uint64_t vertex, uint64_t vertices_per_strand) {
   return strand / TVK_STRAND_BLOCK * TVK_STRAND_BLOCK * vertices_per_strand + vertex * TVK_STRAND_BLOCK +
