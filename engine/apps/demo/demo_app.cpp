@@ -171,7 +171,7 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   if (probe_) {  // step error: the GPU state around one frame, compared with the reference's step
     if (step_error_pending_) {
       device_.wait_idle();
-      step_error_ = probe_->finish(host::read_hair_state(device_, hair_->instance()));
+      step_error_ = probe_->finish(host::read_hair_state(device_, hair_->instance()), draw_strands_);
       step_error_pending_ = false;
     }
     if (step_error_requested_) {
@@ -263,7 +263,8 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   frame.timestamps->cmd_write(cmd, 0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
   const TvkInstance instance = hair_->instance();
   // Follow hairs only for the strands this frame draws: the camera's LOD count (the shadow draws the same strands).
-  uint32_t draw_strands = 0;
+  uint32_t& draw_strands = draw_strands_;
+  draw_strands = 0;
   if (lod.target_width_px > 0.0f || lod.end_distance > lod.start_distance) {
     TvkDrawInfo lod_di{};
     lod_di.struct_size = sizeof(lod_di);

@@ -118,6 +118,7 @@ class DemoApp {
   uint64_t clock_frames_ = 0;
   std::unique_ptr<StepErrorProbe> probe_;
   bool step_error_requested_ = false, step_error_pending_ = false;
+  uint32_t draw_strands_ = 0;  // what the last recorded frame gave tressvk_set_draw_strands (its camera's LOD)
   std::optional<double> step_error_;
 };
 

@@ -24,8 +24,9 @@ class StepErrorProbe {
   void track(const TvkSimFrame& frame);
   // Frame k is measured: before = the GPU state after frame k-1; params = those in effect now.
   void start(const TvkSimFrame& frame, const host::HairState& before, const Params& params);
-  // after = the GPU state after frame k. Returns the largest vertex distance / median strand length.
-  double finish(const host::HairState& after);
+  // after = the GPU state after frame k. Returns the largest vertex distance / median strand length over the strands
+  // the frame wrote: draw_strands, the count it gave tressvk_set_draw_strands (0: every strand).
+  double finish(const host::HairState& after, uint32_t draw_strands = 0);
 
  private:
   asset::HairAsset asset_;
