@@ -161,6 +161,16 @@ TEST_CASE("docs/integration.md: the walk-through runs under synchronization vali
     frame.teleport = 0;
     if (n == 0) REQUIRE(tressvk_prewarm_instance(head, &frame) == TVK_SUCCESS);
     REQUIRE(tressvk_set_frame(head, &frame) == TVK_SUCCESS);
+    // With LOD, follow hairs only for the strands the camera's draw takes (here without LOD: every strand).
+    TvkDrawInfo camera_draw_info = {};
+    camera_draw_info.struct_size = sizeof camera_draw_info;
+    camera_draw_info.instance = head;
+    camera_draw_info.view = &camera;
+    camera_draw_info.materials = &material;
+    camera_draw_info.material_count = 1;
+    uint32_t drawn = 0;
+    REQUIRE(tressvk_get_draw_strands(renderer, &camera_draw_info, &drawn) == TVK_SUCCESS);
+    REQUIRE(tressvk_set_draw_strands(head, drawn) == TVK_SUCCESS);
     REQUIRE(tressvk_new_frame(ctx) == TVK_SUCCESS);
 
     tressvk::test::run_commands([&](VkCommandBuffer cmd) {
