@@ -100,3 +100,19 @@ if(crowd_error GREATER 1e-5)
   message(FATAL_ERROR "perf --instances 3: step error ${crowd_error} over 1e-5")
 endif()
 message(STATUS "crowd of 3: ${dispatches} dispatches/frame, step error ${crowd_error}")
+
+# --draw-strands: the follow hairs of the drawn prefix only (tressvk_set_draw_strands), the step error over those,
+# validation clean.
+set(json "${OUT_DIR}/draw.json")
+run_perf("--draw-strands 60" "${json}" ""
+         --builtin curly --guides 40 --follows 2 --draw-strands 60 --scene shake --frames 4 --warmup 2 --error-frames 2
+         --validation --warmup-ms 0 --warmup-ms-max 0)
+string(JSON draw_strands GET "${text}" draw_strands)
+string(JSON draw_error GET "${text}" step_error_max_rel)
+if(NOT draw_strands EQUAL 60)
+  message(FATAL_ERROR "perf --draw-strands 60: the JSON says ${draw_strands}")
+endif()
+if(draw_error GREATER 1e-5)
+  message(FATAL_ERROR "perf --draw-strands 60: step error ${draw_error} over 1e-5 on the strands written")
+endif()
+message(STATUS "guides and half a follow layer drawn: step error ${draw_error}")
