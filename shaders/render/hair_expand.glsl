@@ -30,7 +30,8 @@ Expanded expand_vertex(uint vertex_id) {
 
   Expanded e;
   e.position = anchors[strand % dc.counts.y].xyz + positions[index].xyz;
-  e.tangent = tangents[index].xyz;
+  const uint g = strand % dc.counts.y;  // a follow's tangent is its guide's (the simulation stores the guides')
+  e.tangent = tangents[(g / 32u) * (32u * n) + v * 32u + g % 32u].xyz;
   e.along = float(v) / float(n - 1u);
   e.group = min(guide_info[strand % dc.counts.y].x, 15u);
   const Material m = dc.materials[e.group];

@@ -18,5 +18,4 @@ void main() {
   uint src = vertex_index(g, v);
   uint dst = vertex_index(G + strand, v);
   pos[dst] = follow_vertex(pos[src], follow_root_offset(g, f), gp.tip_separation, v);
-  tangent[dst] = tangent[src];
 }

@@ -15,8 +15,7 @@
 
 #define TVK_FRAME_KERNEL 1
 #ifdef TVK_FOLLOWS
-#define TVK_FOLLOW_TANGENTS 1  // follows take their guide's tangent as it is written (length.glsl, write_tangent)
-uint tvk_follow_layers;        // follow_layers of the thread's guide: the follows written
+uint tvk_follow_layers;  // follow_layers of the thread's guide: the follows written
 #endif
 vec4 tvk_anchor_now;  // this substep's anchor of the thread's guide (integrate writes it, collision reads it)
 uint tvk_step;        // this substep's index into step_params

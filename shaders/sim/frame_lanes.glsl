@@ -316,7 +316,6 @@ void main() {
       vec3 offset = quat_rotate(root_now, follow_offset[g * K + f].xyz);  // follow_root_offset, the lanes' root frame
       uint dst = vertex_index(follow_strand(G, g, f), v);
       pos[dst] = follow_vertex(L_pos, offset, tip_separation, v);
-      tangent[dst] = tangent[i];
     }
   }
 }

@@ -365,7 +365,6 @@ void main() {
         if (v < N) {
           uint dst = vertex_index(follow_strand(G, g, f), v);
           pos[dst] = follow_vertex(R_pos[k], offset, tip_separation, v);
-          tangent[dst] = tangent[b + v * TVK_BLOCK];
         }
       }
     }

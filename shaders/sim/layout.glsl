@@ -58,7 +58,7 @@ uvec2 element_strand_vertex(uint i) {
 layout(std430, set = 0, binding = 0) buffer Positions { vec4 pos[]; };        // padded(G*(K+1))*N; w = inverse mass (0 = pinned)
 layout(std430, set = 0, binding = 1) buffer PrevPositions { vec4 prev[]; };   // padded(G)*N, previous step
 layout(std430, set = 0, binding = 2) buffer PrevPrevPositions { vec4 prevprev[]; };  // padded(G)*N, two steps back (VSP)
-layout(std430, set = 0, binding = 3) buffer Tangents { vec4 tangent[]; };     // padded(G*(K+1))*N; xyz unit, w = 0
+layout(std430, set = 0, binding = 3) buffer Tangents { vec4 tangent[]; };     // padded(G)*N: the guides' (a follow's is its guide's); xyz unit, w = 0
 
 // ---- per-asset static data (shared by every instance of an asset; built by model::build_gpu_static) ---
 // v = 0: the root in asset space (relative to the asset origin); v > 0: the offset from the root. w = inverse mass.

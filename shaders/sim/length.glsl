@@ -124,19 +124,9 @@ void solve_tip_pinned(uint b) {
   }
 }
 
-// Vertex v's tangent t of guide g (strand base b). The one-thread frame kernel for grooms with follow hairs
-// (TVK_FOLLOW_TANGENTS, frame_follows.comp) gives the guide's follows the same tangent here, as it is made, instead of
-// reading it back when it writes the follows (frame.glsl: with that read-back walk the kernel took 255 registers, now
-// 168). Elsewhere a plain store; the pass-per-dispatch path's follow pass copies tangents (follow.comp).
-#ifdef TVK_FOLLOW_TANGENTS
-void write_tangent(uint g, uint b, uint v, vec4 t) {
-  tangent[b + v * TVK_BLOCK] = t;
-  for (uint f = 0u; f < K && f < tvk_follow_layers; ++f)
-    tangent[vertex_index(follow_strand(pc.guide_count, g, f), v)] = t;
-}
-#else
+// Vertex v's tangent t of guide g (strand base b). Tangents are the guides' only: a follow hair's tangent is its
+// guide's, which the renderer reads at the guide's index (layout.glsl, binding 3).
 #define write_tangent(g, b, v, t) tangent[(b) + (v) * TVK_BLOCK] = (t)
-#endif
 
 // The walk that ends a step (after the length sweeps): the velocity clamp, the non-finite check and the tangents
 // (along the edge leaving v, arriving for the tip; an edge too short to have a direction reuses the previous tangent,

@@ -33,11 +33,11 @@ namespace {
 
 // The bytes a frame must move at the least: the state (positions and the previous positions) read once and written
 // once, prevprev written when VSP runs, tangents written once, the static rest data each pass reads (rest positions
-// and rest info; the local frame's rest edges with local shape) read once, and each follow hair's positions and
-// tangents written once. What the frame kernel re-reads from caches within the frame is not counted.
+// and rest info; the local frame's rest edges with local shape) read once, and each follow hair's positions written
+// once (a follow's tangent is its guide's). What the frame kernel re-reads from caches within the frame is not counted.
 uint64_t frame_bytes(uint64_t guide_vertices, uint64_t follow_vertices, bool vsp, bool local_shape) {
   const uint64_t per_guide_vertex = 16 * (2 + 2 + (vsp ? 1 : 0) + 1 + 2 + (local_shape ? 1 : 0));
-  return guide_vertices * per_guide_vertex + follow_vertices * 32;
+  return guide_vertices * per_guide_vertex + follow_vertices * 16;
 }
 
 struct CopyTiming {

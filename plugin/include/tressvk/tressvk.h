@@ -226,7 +226,9 @@ static inline uint64_t tvk_vertex_index(uint64_t strand, uint64_t vertex, uint64
 typedef struct TvkInstanceBuffers {
   VkBuffer positions;                /* vec4 per vertex of every rendered strand (guides, then follow layers): xyz the
                                         offset from the strand's anchor, w = inverse mass */
-  VkBuffer tangents;                 /* vec4 per vertex, same order; xyz unit */
+  VkBuffer tangents;                 /* vec4 per guide vertex, same layout; xyz unit. A follow strand's tangent is its
+                                        guide's: vertex v of rendered strand s takes tangents[tvk_vertex_index(
+                                        s % guide_count, v, vertices_per_strand)] */
   VkBuffer previous_positions;       /* vec4 per guide vertex, the previous step (offset from the same anchor) */
   VkBuffer previous_previous_positions; /* vec4 per guide vertex, two steps back (for checking against the
                                         reference, tressvk::reference::Simulator::set_state) */

@@ -55,7 +55,7 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
       (r = create_buffer(ctx, guide_vertices * 16, state_usage, Memory::device, "previous positions", inst.prev)) ||
       (r = create_buffer(ctx, guide_vertices * 16, state_usage, Memory::device, "positions two steps back",
                          inst.prevprev)) ||
-      (r = create_buffer(ctx, all_vertices * 16, state_usage, Memory::device, "tangents", inst.tangents)) ||
+      (r = create_buffer(ctx, guide_vertices * 16, state_usage, Memory::device, "tangents", inst.tangents)) ||
       (r = create_buffer(ctx, VkDeviceSize{rest.guide_count} * 16, state_usage, Memory::device, "strand anchors",
                          inst.anchors)) ||
       (r = create_buffer(ctx, counter_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::host_readback, "counters",

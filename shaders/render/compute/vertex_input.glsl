@@ -18,7 +18,8 @@ DrawnVertex drawn_vertex(uint id) {
   const uint index = (strand / 32u) * (32u * n) + v * 32u + strand % 32u;
   DrawnVertex d;
   d.position = anchors[strand % dc.counts.y].xyz + positions[index].xyz;
-  d.tangent = tangents[index].xyz;
+  const uint g = strand % dc.counts.y;  // a follow's tangent is its guide's (the simulation stores the guides')
+  d.tangent = tangents[(g / 32u) * (32u * n) + v * 32u + g % 32u].xyz;
   d.along = float(v) / float(n - 1u);
   d.material = dc.materials[min(guide_info[strand % dc.counts.y].x, 15u)];
   d.tint = 1.0 + d.material.fiber.z * (2.0 * strand_hash(strand) - 1.0);

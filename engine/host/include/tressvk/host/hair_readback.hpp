@@ -70,7 +70,7 @@ inline HairState read_hair_state(const engine::Device& device, TvkInstance insta
   s.tangents.resize(all * n);
   for (size_t strand = 0; strand < all; ++strand)
     for (size_t v = 0; v < n; ++v)
-      s.tangents[strand * n + v] = tangents[element(strand, v)];
+      s.tangents[strand * n + v] = tangents[element(strand % guides, v)];  // a follow's tangent is its guide's
   return s;
 }
 
