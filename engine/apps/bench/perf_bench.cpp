@@ -183,9 +183,8 @@ int execute_perf_command(const PerfCommand& given) {
     }
     TvkInstance inst = crowd.front();
     // The strands the step error covers: the written ones.
-    const uint32_t rendered = groom.guide_count() * (1u + groom.follow_per_guide);
     const size_t written_vertices =
-        size_t{cmd.draw_strands == 0 ? rendered : std::max(cmd.draw_strands, groom.guide_count())} *
+        size_t{cmd.draw_strands == 0 ? groom.total_strands() : std::max(cmd.draw_strands, groom.guide_count())} *
         groom.vertices_per_strand;
 
     const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), cmd.params);

@@ -262,28 +262,6 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   const VkCommandBuffer cmd = frame.cmd;
   frame.timestamps->cmd_write(cmd, 0, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT);
   const TvkInstance instance = hair_->instance();
-  // Follow hairs only for the strands this frame draws: the camera's LOD count (the shadow draws the same strands).
-  uint32_t& draw_strands = draw_strands_;
-  draw_strands = 0;
-  if (lod.target_width_px > 0.0f || lod.end_distance > lod.start_distance) {
-    TvkDrawInfo lod_di{};
-    lod_di.struct_size = sizeof(lod_di);
-    lod_di.instance = instance;
-    lod_di.view = &camera;
-    lod_di.materials = &material_;
-    lod_di.material_count = 1;
-    lod_di.lod = lod;
-    check_tvk(tressvk_get_draw_strands(hair_->renderer(), &lod_di, &draw_strands), ctx, "tressvk_get_draw_strands");
-  }
-  check_tvk(tressvk_set_draw_strands(instance, draw_strands), ctx, "tressvk_set_draw_strands");
-  check_tvk(host::record_simulate(ctx, cmd, instance), ctx, "tressvk_cmd_simulate");
-  frame.timestamps->cmd_write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-
-  // Shadow pass: the engine's shadow map; the head and the hair both draw into it. Always cleared (and
-  // transitioned) so the main pass samples a defined image even with --no-shadows.
-  const engine::OffscreenTarget& shadow = scene_renderer_->shadow_target();
-  engine::ClearValues clear_shadow;
-  engine::cmd_begin_rendering(cmd, shadow, clear_shadow, engine::state::kUndefined, kShadowAfterFrame);
   TvkDrawInfo shadow_di{};
   shadow_di.struct_size = sizeof(shadow_di);
   shadow_di.instance = instance;
@@ -292,6 +270,17 @@ void DemoApp::record(const engine::FrameLoop::Frame& frame) {
   shadow_di.materials = &material_;
   shadow_di.material_count = 1;
   shadow_di.lod = lod;
+  // Follow hairs only for the strands this frame draws: the camera's LOD count, which both draws take.
+  check_tvk(tressvk_get_draw_strands(hair_->renderer(), &shadow_di, &draw_strands_), ctx, "tressvk_get_draw_strands");
+  check_tvk(tressvk_set_draw_strands(instance, draw_strands_), ctx, "tressvk_set_draw_strands");
+  check_tvk(host::record_simulate(ctx, cmd, instance), ctx, "tressvk_cmd_simulate");
+  frame.timestamps->cmd_write(cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+
+  // Shadow pass: the engine's shadow map; the head and the hair both draw into it. Always cleared (and
+  // transitioned) so the main pass samples a defined image even with --no-shadows.
+  const engine::OffscreenTarget& shadow = scene_renderer_->shadow_target();
+  engine::ClearValues clear_shadow;
+  engine::cmd_begin_rendering(cmd, shadow, clear_shadow, engine::state::kUndefined, kShadowAfterFrame);
   const bool compute_path = options_.hair_path == HairPath::compute;
   if (options_.shadows) {
     scene_renderer_->cmd_draw_shadow(cmd, frame.slot, sf);

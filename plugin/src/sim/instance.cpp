@@ -207,8 +207,7 @@ TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* s
 TvkResult tressvk_set_draw_strands(TvkInstance instance, uint32_t strands) {
   if (!instance)
     return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_draw_strands: instance is NULL");
-  const auto& rest = instance->asset->rest;
-  const uint32_t rendered = rest.guide_count * (1u + rest.follow_per_guide);
+  const uint32_t rendered = instance->asset->cpu.total_strands();
   if (strands > rendered)
     return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT,
                                "tressvk_set_draw_strands: strands %u exceeds the instance's %u rendered strands",
