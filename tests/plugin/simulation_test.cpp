@@ -45,6 +45,7 @@ struct SceneResult {
   uint32_t exploded_strands = 0;
   std::vector<std::string> passes;  // of the last frame that recorded any (an idle instance records none)
   std::vector<uint32_t> steps;      // steps simulated in each frame
+  std::vector<uint32_t> dispatches;  // dispatches recorded in each frame (tressvk_get_recorded_dispatches)
 };
 
 std::vector<TvkSimParams> default_params(const asset::HairAsset& hair) {
@@ -93,6 +94,7 @@ SceneResult run_scene(const asset::HairAsset& hair, const std::string& scene, ui
       gpu.run_frame(frame);
       if (std::vector<std::string> p = gpu.recorded_passes(); !p.empty()) result.passes = std::move(p);
       result.steps.push_back(gpu.stats().steps_last_frame);
+      result.dispatches.push_back(tressvk_get_recorded_dispatches(ctx.get()));
       const auto err = reference::position_error(std::span<const test::Point>(gpu.state().pos), ref.positions(), median);
       result.step_error_max = std::max(result.step_error_max, err.max_rel);
       const uint32_t n = hair.vertices_per_strand;
@@ -337,9 +339,13 @@ TEST_CASE("a crowd takes the one-thread kernel at any step rate and keeps every 
     const TvkSimFrame frame = reference::scene_frame("shake", f, geometry);
     test::run_frame_batched(ctx.get(), members, std::vector<TvkSimFrame>(kCrowd, frame));
     const std::vector<std::string> crowd_passes = members.front()->recorded_passes();
+    const uint32_t crowd_dispatches = tressvk_get_recorded_dispatches(ctx.get());
     const uint32_t steps = members.front()->stats().steps_last_frame;
     alone.run_frame(frame);
     const std::vector<std::string> alone_passes = alone.recorded_passes();
+    // One dispatch a frame per instance, whatever the steps (the frame kernel runs every substep).
+    CHECK(crowd_dispatches == kCrowd);
+    CHECK(tressvk_get_recorded_dispatches(ctx.get()) == 1);
     INFO("frame " << f << ", " << steps << " steps: crowd " << crowd_passes.front() << ", alone "
                   << alone_passes.front());
     CHECK(has_pass_containing(alone_passes, "frame(runs"));  // names are listed once, however many instances ran them
@@ -360,6 +366,13 @@ TEST_CASE("passes are recorded only for what the scene uses", "[plugin][simulati
     } else {
       CHECK(has_pass_containing(r.passes, "integrate"));
       CHECK(has_pass_containing(r.passes, "length"));
+    }
+    // The frame kernel: one dispatch a frame for all its steps; passes: at least integrate and length per step.
+    for (size_t f = 0; f < r.steps.size(); ++f) {
+      INFO("frame " << f << ": " << r.steps[f] << " steps, " << r.dispatches[f] << " dispatches");
+      if (r.steps[f] == 0) CHECK(r.dispatches[f] == 0);
+      else if (has_pass_containing(r.passes, "frame")) CHECK(r.dispatches[f] == 1);
+      else CHECK(r.dispatches[f] >= 2 * r.steps[f]);
     }
     CHECK_FALSE(has_pass_containing(r.passes, "wind"));
     CHECK_FALSE(has_pass_containing(r.passes, "collision"));

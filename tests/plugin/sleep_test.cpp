@@ -210,12 +210,14 @@ TEST_CASE("an instance whose every guide sleeps records no dispatch until a fram
   for (uint32_t k = 0; k < 30; ++k) {
     gpu.run_frame(reference::scene_frame("settle", f++, geometry));
     CHECK(recorded() == 0);
+    CHECK(tressvk_get_recorded_dispatches(twins.ctx.get()) == 0);
   }
   CHECK(moved(slept, gpu.state()) == 0.0);
   // In a batch with an instance that runs, only that one is dispatched (one frame kernel), and each keeps its own.
   const TvkSimFrame still = reference::scene_frame("settle", f++, geometry);
   test::run_frame_batched(twins.ctx.get(), {&gpu, &awake}, {still, still});
   CHECK(recorded() == 1);
+  CHECK(tressvk_get_recorded_dispatches(twins.ctx.get()) == 1);  // the awake twin's frame kernel alone
   CHECK(moved(slept, gpu.state()) == 0.0);
   CHECK(asleep(awake.state()) == 0);
   // The first frame that is not still runs and wakes every guide; the still frames after it run again until the

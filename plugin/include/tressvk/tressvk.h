@@ -289,6 +289,11 @@ TVK_API TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer comma
  * most `capacity` names (static strings). */
 TVK_API uint32_t tressvk_get_recorded_passes(TvkContext context, const char** names, uint32_t capacity);
 
+/* The compute dispatches the last tressvk_cmd_simulate recorded: every pass of every substep of every instance (by
+ * default one per instance that ran; 0 when every instance was idle). Needs no timestamps, so a host can check its
+ * dispatch budget, or time its frames, without the timestamps that tressvk_get_pass_timings writes into the frame. */
+TVK_API uint32_t tressvk_get_recorded_dispatches(TvkContext context);
+
 typedef struct TvkPassTiming {
   const char* name;                  /* pass name, as in tressvk_get_recorded_passes */
   uint32_t dispatches;               /* dispatches of that pass in the frame (substeps x instances) */

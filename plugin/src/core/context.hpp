@@ -61,6 +61,7 @@ struct Context {
 
   // Names of the passes recorded by the last simulate (static strings from the pass table, plus variants).
   std::vector<std::string> recorded_passes;
+  uint32_t recorded_dispatches = 0;  // by the last tressvk_cmd_simulate
 
   // Timestamps: a pool of frames_in_flight slices; each slice remembers which pass each query pair timed.
   VkQueryPool timestamp_pool = VK_NULL_HANDLE;

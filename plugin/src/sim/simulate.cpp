@@ -468,6 +468,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
   record_barriers(ctx, cmd, barriers);
 
   ctx.recorded_passes.clear();
+  ctx.recorded_dispatches = 0;
   const auto note_pass = [&ctx](const std::string& name) {
     if (std::find(ctx.recorded_passes.begin(), ctx.recorded_passes.end(), name) == ctx.recorded_passes.end())
       ctx.recorded_passes.push_back(name);
@@ -536,7 +537,10 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
                                     : sim::dispatch_groups(u->info->granularity, rest.guide_count,
                                                            rest.vertices_per_strand, rest.follow_per_guide,
                                                            ctx.workgroup_size);
-      if (groups) ctx.vk.vkCmdDispatch(cmd, groups, 1, 1);
+      if (groups) {
+        ctx.vk.vkCmdDispatch(cmd, groups, 1, 1);
+        ++ctx.recorded_dispatches;
+      }
       inst.hazards.pass_recorded(u->info->reads, u->info->writes);
       note_pass(u->name);
     }
@@ -591,6 +595,8 @@ TvkResult tressvk_cmd_simulate(TvkContext context, VkCommandBuffer cmd, const Tv
     return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_cmd_simulate: context is NULL");
   return tressvk::guarded(*context, "tressvk_cmd_simulate", [&] { return record_simulation(*context, cmd, info); });
 }
+
+uint32_t tressvk_get_recorded_dispatches(TvkContext context) { return context ? context->recorded_dispatches : 0; }
 
 uint32_t tressvk_get_recorded_passes(TvkContext context, const char** names, uint32_t capacity) {
   if (!context) return 0;
