@@ -5,8 +5,9 @@
 
 Debian's python3-matplotlib. One line per simulation path (the default choice, the one-thread frame kernel, pass per
 dispatch, whichever the sweep ran) and step rate (sweep-PATH-GUIDES-RATE.json), log-log; AMD TressFX 4.1's own kernels on an NVIDIA H200 (one step, 3+3 iterations)
-as points; and the bandwidth floor: the bytes a frame must move (bytes_per_frame) at the plain copy speed measured in
-the same run (the fastest copy_gb_per_s of the run). The step error of every point is in the JSON file and the tables of docs/simulation.md.
+as points; and the bandwidth floor: the bytes a frame must move (bytes_per_frame) at the speed of a plain copy kernel
+measured in the same run (the fastest copy_gb_per_s of the run; transfer_copy_gb_per_s, vkCmdCopyBuffer's, is not
+the floor: a copy engine may move less). The step error of every point is in the JSON file and the tables of docs/simulation.md.
 """
 import glob
 import json
@@ -68,7 +69,7 @@ def main():
         speed = max(c for _, c in floor.values())
         xs = sorted(floor)
         ax.plot(xs, [floor[x][0] / (speed * 1e9) * 1e6 for x in xs], ":", color="black",
-                label=f"bandwidth floor (frame bytes at {speed:.0f} GB/s, the run's fastest copy)")
+                label=f"bandwidth floor (frame bytes at {speed:.0f} GB/s, the run's fastest copy kernel)")
     ax.plot([71072, 1048576, 4194304], [25, 200, 600], "rx", markersize=9, label="issue 11 targets at 240 Hz")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -76,7 +77,7 @@ def main():
     ax.set_ylabel("GPU time per frame (µs, median)")
     ax.set_title(f"TressVK simulation, scene shake, 2 local iterations, 1 length sweep\n{device.split('(')[0].strip()}")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=120)
 

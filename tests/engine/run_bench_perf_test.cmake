@@ -31,11 +31,23 @@ foreach(path default fused passes)
   if(path STREQUAL "default")
     set(env_path "")
   endif()
+  # The plugin's per-pass timestamps are off unless asked for (they add to the frame time); the passes path asks.
+  # (Its timings of a frame are read frames_in_flight frames later: 8 timed frames leave some to read.)
+  set(timings "")
+  set(timing_keys "")
+  set(frames 4)
+  if(path STREQUAL "passes")
+    set(timings --pass-timings)
+    set(timing_keys sim_pass_ms_per_frame)
+    set(frames 8)
+  endif()
   run_perf("(${path})" "${json}" "TRESSVK_SIM_PATH=${env_path}"
-           --builtin curly --guides 40 --follows 1 --scene shake --frames 4 --warmup 2 --error-frames 2 --validation
-           --warmup-ms 0 --warmup-ms-max 200)
+           --builtin curly --guides 40 --follows 1 --scene shake --frames ${frames} --warmup 2 --error-frames 2 --validation
+           --warmup-ms 0 --warmup-ms-max 200 ${timings})
+  # copy_gb_per_s: the copy kernel's; transfer_copy_gb_per_s: vkCmdCopyBuffer's (both of the frame's bytes).
   foreach(key gpu_ms_per_frame gpu_ms_per_frame_p99 bytes_per_frame achieved_gb_per_s copy_gb_per_s
-              dispatches_per_frame step_error_max_rel steps_per_frame guide_vertices)
+              transfer_copy_gb_per_s dispatches_per_frame step_error_max_rel steps_per_frame guide_vertices
+              ${timing_keys})
     string(JSON value ERROR_VARIABLE missing GET "${text}" ${key})
     if(missing)
       message(FATAL_ERROR "perf (${path}): key ${key} missing from ${json}")

@@ -65,18 +65,14 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
     TvkPassTiming timings[32];
     const uint32_t n = tressvk_get_pass_timings(ctx, timings, 32);
     if (n) {
-      uint32_t d = 0;
       double ms = 0;
-      for (uint32_t i = 0; i < n && i < 32; ++i) {
-        d += timings[i].dispatches;
-        ms += timings[i].milliseconds;
-      }
-      out.dispatches = std::max(out.dispatches, d);
+      for (uint32_t i = 0; i < n && i < 32; ++i) ms += timings[i].milliseconds;
       if (first_timed != UINT32_MAX && f > first_timed + in_flight && f <= first_timed + frames)
         out.sim_ms.push_back(ms);
     }
     fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     host::check_tvk(host::record_simulate(ctx, fr.cmd, instances), ctx, "tressvk_cmd_simulate");
+    out.dispatches = std::max(out.dispatches, tressvk_get_recorded_dispatches(ctx));
     fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     loop.end();
   };

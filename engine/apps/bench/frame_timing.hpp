@@ -26,7 +26,7 @@ struct WarmUp {
 struct FrameTimes {
   std::vector<double> frame_ms;  // per timed frame, the frame's own timestamps
   std::vector<double> sim_ms;    // per timed frame, the sum of the plugin's pass timings (when it was given timestamps)
-  uint32_t dispatches = 0;       // most dispatches in a frame (from the plugin's pass timings)
+  uint32_t dispatches = 0;       // most dispatches in a frame (tressvk_get_recorded_dispatches)
   double steps_per_frame = 0;    // over every recorded frame
   double wall_ms = 0;            // CPU wall time of the timed frames, all of them
   uint32_t warmup_frames = 0;    // frames run before the timed ones

@@ -4,10 +4,13 @@
 #include "frame_timing.hpp"
 
 #include "params.hpp"
+#include "tressvk_bench_spirv.h"
 
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/buffer.hpp>
+#include <tressvk/engine/descriptors.hpp>
+#include <tressvk/engine/pipeline.hpp>
 #include <tressvk/engine/device.hpp>
 #include <tressvk/engine/frame_loop.hpp>
 #include <tressvk/engine/sync.hpp>
@@ -41,40 +44,78 @@ uint64_t frame_bytes(uint64_t guide_vertices, uint64_t follow_vertices, bool vsp
 }
 
 struct CopyTiming {
-  double ms = 0;
+  double ms = 0;           // the copy kernel
   double gb_per_s = 0;
+  double transfer_ms = 0;  // vkCmdCopyBuffer of the same bytes
+  double transfer_gb_per_s = 0;
 };
 
-// A plain device-local buffer copy moving `bytes` (bytes / 2 read, bytes / 2 written), timed with GPU timestamps:
-// the median of `repeats` copies recorded back to back in one command buffer.
+// The frame's bytes moved by a plain copy, `bytes` / 2 read and `bytes` / 2 written between two device-local
+// buffers, two ways, each timed with GPU timestamps as the median of `repeats` back to back in one command buffer:
+// a copy kernel (shaders/copy.comp, on the shader cores like the simulation: the bandwidth reference) and
+// vkCmdCopyBuffer, which a driver may run on a copy engine with a lower ceiling (an NVIDIA H100 moved about a third of
+// the kernel's bytes per second through it: docs/simulation.md, "Measured").
 CopyTiming time_copy(const engine::Device& dev, uint64_t bytes, uint32_t repeats) {
   const VkDeviceSize half = std::max<VkDeviceSize>(256, (bytes / 2 + 255) / 256 * 256);
-  engine::Buffer src = engine::create_buffer(dev, half, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                             engine::MemoryUsage::device_local);
-  engine::Buffer dst = engine::create_buffer(dev, half, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                             engine::MemoryUsage::device_local);
-  engine::TimestampQueries ts(dev, 2 * repeats);
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  engine::Buffer src = engine::create_buffer(dev, half, usage, engine::MemoryUsage::device_local);
+  engine::Buffer dst = engine::create_buffer(dev, half, usage, engine::MemoryUsage::device_local);
+  engine::TimestampQueries ts(dev, 4 * repeats);
   if (!ts.supported()) return {};
+  const auto set_layout =
+      engine::create_set_layout(dev, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                                      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}});
+  const engine::DescriptorPool pool(dev, 1);
+  const VkDescriptorSet set = pool.allocate(set_layout.get());
+  engine::write_buffer_descriptor(dev, set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, src.handle());
+  engine::write_buffer_descriptor(dev, set, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle());
+  engine::ComputePipelineDesc desc;
+  desc.spirv = k_spv_copy_comp;
+  desc.layout.set_layouts = {set_layout.get()};
+  desc.layout.push_constant_size = sizeof(uint32_t);
+  desc.debug_name = "tressvk-bench copy";
+  const engine::Pipeline copy = engine::create_compute_pipeline(dev, desc);
+  const uint32_t elements = static_cast<uint32_t>(std::min<VkDeviceSize>(half / 16, UINT32_MAX));
+  const uint32_t groups = std::min<uint32_t>(engine::group_count(elements, 256), 65535);
+  // Each copy waits for the one before (write-after-write on dst), whichever way it copies.
+  const engine::ResourceState written{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                      VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+  const engine::ResourceState next{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                   VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT |
+                                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
   dev.run_commands([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, src.handle(), 0, VK_WHOLE_SIZE, 0x3f800000u);
     ts.cmd_reset(cmd);
+    copy.cmd_bind(cmd);
+    copy.cmd_bind_set(cmd, 0, set);
+    copy.cmd_push(cmd, elements);
     for (uint32_t i = 0; i < repeats; ++i) {
-      // each copy waits for the one before (write-after-write on dst)
-      engine::cmd_memory_barrier(cmd, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
-                                 {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                                  VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT});
-      ts.cmd_write(cmd, 2 * i, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
+      engine::cmd_memory_barrier(cmd, written, next);
+      ts.cmd_write(cmd, 4 * i, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+      vkCmdDispatch(cmd, groups, 1, 1);
+      ts.cmd_write(cmd, 4 * i + 1, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    }
+    for (uint32_t i = 0; i < repeats; ++i) {
+      engine::cmd_memory_barrier(cmd, written, next);
+      ts.cmd_write(cmd, 4 * i + 2, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
       const VkBufferCopy region{0, 0, half};
       vkCmdCopyBuffer(cmd, src.handle(), dst.handle(), 1, &region);
-      ts.cmd_write(cmd, 2 * i + 1, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
+      ts.cmd_write(cmd, 4 * i + 3, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
     }
   });
-  std::vector<double> ms;
-  for (uint32_t i = repeats / 5; i < repeats; ++i)  // the first fifth warms the clocks and caches up
-    if (auto t = ts.elapsed_ms(2 * i, 2 * i + 1)) ms.push_back(*t);
+  const auto median_ms = [&](uint32_t first_slot) {
+    std::vector<double> ms;
+    for (uint32_t i = repeats / 5; i < repeats; ++i)  // the first fifth warms the clocks and caches up
+      if (auto t = ts.elapsed_ms(4 * i + first_slot, 4 * i + first_slot + 1)) ms.push_back(*t);
+    return ms.empty() ? 0.0 : percentile(ms, 0.5);
+  };
+  const auto gb_per_s = [&](double ms) { return ms > 0 ? double(2 * half) / (ms * 1e-3) * 1e-9 : 0.0; };
   CopyTiming out;
-  out.ms = percentile(ms, 0.5);
-  out.gb_per_s = out.ms > 0 ? double(2 * half) / (out.ms * 1e-3) * 1e-9 : 0;
+  out.ms = median_ms(0);
+  out.gb_per_s = gb_per_s(out.ms);
+  out.transfer_ms = median_ms(2);
+  out.transfer_gb_per_s = gb_per_s(out.transfer_ms);
   return out;
 }
 
@@ -96,6 +137,8 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
                    "--warmup-ms 0: --warmup frames only)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  perf->add_flag("--pass-timings", cmd.pass_timings,
+                 "enable the plugin's per-pass timestamps (JSON sim_pass_ms_per_frame); they add to the frame's time");
   perf->add_option("--in-flight", cmd.frames_in_flight, "frames in flight")->capture_default_str()->check(CLI::Range(1, 8));
   perf->add_option("--error-frames", cmd.error_frames, "frames after the timed ones whose step error is measured")
       ->capture_default_str();
@@ -167,8 +210,9 @@ int execute_perf_command(const PerfCommand& given) {
   nlohmann::json out;
   try {
     engine::Device dev(host::tool_device_options("tressvk-bench", cmd.device, cmd.validation, cmd.validation));
-    // The plugin's parameter ring turns with the frame loop's slots; timestamps only for the dispatch count of a frame.
-    TvkContext ctx = host::create_context(dev, cmd.frames_in_flight, /*timestamps=*/true);
+    // The plugin's parameter ring turns with the frame loop's slots. Its own timestamps (--pass-timings) add two
+    // waits for idle inside the frame that a host without them does not pay (3 us a frame on an NVIDIA H100).
+    TvkContext ctx = host::create_context(dev, cmd.frames_in_flight, cmd.pass_timings);
     const std::vector<std::byte> bytes = asset::write(groom);
     TvkAsset asset = host::load_asset(dev, ctx, bytes);
     TvkInstanceCreateInfo ic{};
@@ -288,12 +332,15 @@ int execute_perf_command(const PerfCommand& given) {
         {"gpu_ms_per_frame", gpu_ms},
         {"gpu_ms_per_frame_p99", percentile(frame_ms, 0.99)},
         {"gpu_ms_per_frame_min", percentile(frame_ms, 0.0)},
-        {"sim_pass_ms_per_frame", percentile(sim_ms, 0.5)},
+        {"sim_pass_ms_per_frame", sim_ms.empty() ? 0.0 : percentile(sim_ms, 0.5)},
         {"wall_ms_per_frame", wall_ms / cmd.frames},
         {"bytes_per_frame", frame_byte_count},
         {"achieved_gb_per_s", gpu_ms > 0 ? double(frame_byte_count) / (gpu_ms * 1e-3) * 1e-9 : 0.0},
         {"copy_ms", copy.ms},
         {"copy_gb_per_s", copy.gb_per_s},
+        {"transfer_copy_ms", copy.transfer_ms},
+        {"transfer_copy_gb_per_s", copy.transfer_gb_per_s},
+        {"pass_timings", cmd.pass_timings},
         {"step_error_max_rel", step_error},
         {"draw_strands", cmd.draw_strands},
         {"step_error_frames", error_frames},

@@ -28,6 +28,7 @@ struct PerfCommand {
   TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
   bool validation = false;
   bool table_row = false;
+  bool pass_timings = false;  // the plugin's per-pass timestamps (they add to the frame time)
 };
 
 void add_perf_command(CLI::App& app, PerfCommand& cmd);
