@@ -222,6 +222,7 @@ TEST_CASE("docs/integration.md: the walk-through runs under synchronization vali
     const uint32_t passes = tressvk_get_recorded_passes(ctx, names, 16);
     // The fused frame kernel (the default) records one pass per frame; TRESSVK_SIM_PATH=passes one per pass.
     CHECK(passes >= 1);
+    CHECK(tressvk_get_recorded_dispatches(ctx) >= passes);  // every pass dispatched at least once
     bool collision = false;
     for (uint32_t i = 0; i < passes && i < 16; ++i)
       collision |= std::string(names[i]).find("+collision") != std::string::npos;
