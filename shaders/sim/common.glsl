@@ -73,7 +73,10 @@ vec4 frame_align(vec4 q, vec3 e, float rest_len) {
   vec3 d = e + (max(kCollapse * rest_len - el, 0.0) + fold_guard(e, el, x)) * x;
   float len = length(d);
   if (!(len > kDirectionEps * rest_len)) return q;
-  return normalize(quat_mul(quat_from_two_unit(x, d / len), q));
+  // quat_from_two_unit(x, d / len), unnormalised (the product is normalised): (x cross d, |d| + x.d) is that
+  // rotation times a positive factor. The fold guard keeps d within about 97 degrees of x, so the half-turn case
+  // never arises here.
+  return normalize(quat_mul(vec4(cross(x, d), len + dot(x, d)), q));
 }
 
 float strand_rest_length(uint g) { return uintBitsToFloat(guide_info[g].z); }
