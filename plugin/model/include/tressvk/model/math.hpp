@@ -65,7 +65,8 @@ inline Quat quat_from_two_unit(Vec3 a, Vec3 b) {
 }
 // Turns frame q minimally so that its local +X points along edge e (rest length rest_len); an edge shorter than
 // its rest length is blended with the frame's +X by the missing length (see frame_align in common.glsl; the
-// constants are kCollapse and kDirectionEps there and in model.hpp).
+// constants are kCollapse and kDirectionEps there and in model.hpp). The GLSL twin multiplies the rotation in
+// unnormalised, (x cross d, |d| + x.d), and normalises the product once: the same frame in exact arithmetic.
 inline constexpr double kCollapseAlign = 1.0;  // = kCollapse in model.hpp
 // Fold guard (GLSL twin in common.glsl): the amount of unit vector u added to e (length el) so that e never points
 // against u; zero within 90 degrees, 2 el cos^2 beyond. Keeps minimal rotations away from half turns.
