@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The simulation speed tables and scaling sweep of docs/simulation.md ("Speed: which kernel runs"), with
-# `tressvk-bench perf` (frames in flight, no readback between timed frames, a plain copy of the frame's bytes timed
-# in the same run, the step error measured after the timed frames), for both simulation paths:
+# `tressvk-bench perf` (frames in flight, no readback between timed frames, no plugin timestamps, a copy kernel moving
+# the frame's bytes timed in the same run, the step error measured after the timed frames), for both simulation paths:
 #
 #   scripts/gpu-perf.sh OUTDIR [BINDIR [DATADIR]]
 #   python3 scripts/plot-sim-perf.py OUTDIR docs/images/sim-perf.png
