@@ -5,6 +5,7 @@
 #include <tressvk/asset_io.hpp>
 #include <tressvk/baker/procedural.hpp>
 #include <tressvk/engine/image.hpp>
+#include <tressvk/host/glue.hpp>
 
 #include <catch2/catch_test_macros.hpp>
 
@@ -15,19 +16,10 @@
 
 namespace {
 
-// A built-in groom loaded through the plugin (its upload recorded and waited for).
+// A built-in groom loaded through the plugin (the host glue records its upload and waits for it).
 TvkAsset load_builtin(TvkContext ctx, const char* name, const tressvk::baker::BuiltinGroomOptions& options) {
-  const std::vector<std::byte> bytes = tressvk::asset::write(tressvk::baker::make_builtin_groom(name, options));
-  TvkAsset asset = nullptr;
-  tressvk::test::run_commands([&](VkCommandBuffer cmd) {
-    TvkAssetLoadInfo li{};
-    li.struct_size = sizeof(li);
-    li.data = bytes.data();
-    li.size = bytes.size();
-    li.upload_command_buffer = cmd;
-    REQUIRE(tressvk_load_asset(ctx, &li, &asset) == TVK_SUCCESS);
-  });
-  return asset;
+  return tressvk::host::load_asset(tressvk::test::device(), ctx,
+                                   tressvk::asset::write(tressvk::baker::make_builtin_groom(name, options)));
 }
 
 // A renderer of the shading passes into RGBA8 with a 32-bit depth.
