@@ -161,15 +161,27 @@ TEST_CASE("docs/integration.md: the walk-through runs under synchronization vali
     frame.teleport = 0;
     if (n == 0) REQUIRE(tressvk_prewarm_instance(head, &frame) == TVK_SUCCESS);
     REQUIRE(tressvk_set_frame(head, &frame) == TVK_SUCCESS);
-    // With LOD, follow hairs only for the strands the camera's draw takes (here without LOD: every strand).
-    TvkDrawInfo camera_draw_info = {};
-    camera_draw_info.struct_size = sizeof camera_draw_info;
-    camera_draw_info.instance = head;
-    camera_draw_info.view = &camera;
-    camera_draw_info.materials = &material;
-    camera_draw_info.material_count = 1;
+    // The main pass's draw, shadowed by the map the shadow pass below fills.
+    TvkShadowMap map = {};
+    map.depth_view = shadow.depth.view();
+    map.sampler = sampler;
+    map.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    std::copy(std::begin(light.view_projection), std::end(light.view_projection), map.view_projection);
+    map.near_plane = 0.0f;
+    map.far_plane = static_cast<float>(hi[2] - lo[2] + 2.0);
+    TvkDrawInfo hd = {};
+    hd.struct_size = sizeof hd;
+    hd.instance = head;
+    hd.view = &camera;
+    hd.materials = &material;
+    hd.material_count = 1;
+    hd.light_count = 1;
+    hd.lights = &key;
+    hd.ambient[0] = hd.ambient[1] = hd.ambient[2] = 0.17f;
+    hd.shadow = &map;
+    // With LOD, follow hairs only for the strands that draw takes (here without LOD: every strand).
     uint32_t drawn = 0;
-    REQUIRE(tressvk_get_draw_strands(renderer, &camera_draw_info, &drawn) == TVK_SUCCESS);
+    REQUIRE(tressvk_get_draw_strands(renderer, &hd, &drawn) == TVK_SUCCESS);
     REQUIRE(tressvk_set_draw_strands(head, drawn) == TVK_SUCCESS);
     REQUIRE(tressvk_new_frame(ctx) == TVK_SUCCESS);
 
@@ -198,23 +210,6 @@ TEST_CASE("docs/integration.md: the walk-through runs under synchronization vali
 
       // The main pass.
       tressvk::engine::cmd_begin_rendering(cmd, target, {});
-      TvkShadowMap map = {};
-      map.depth_view = shadow.depth.view();
-      map.sampler = sampler;
-      map.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-      std::copy(std::begin(light.view_projection), std::end(light.view_projection), map.view_projection);
-      map.near_plane = 0.0f;
-      map.far_plane = static_cast<float>(hi[2] - lo[2] + 2.0);
-      TvkDrawInfo hd = {};
-      hd.struct_size = sizeof hd;
-      hd.instance = head;
-      hd.view = &camera;
-      hd.materials = &material;
-      hd.material_count = 1;
-      hd.light_count = 1;
-      hd.lights = &key;
-      hd.ambient[0] = hd.ambient[1] = hd.ambient[2] = 0.17f;
-      hd.shadow = &map;
       REQUIRE(tressvk_cmd_draw_hair(renderer, cmd, &hd) == TVK_SUCCESS);
       tressvk::engine::cmd_end_rendering(cmd);
     });
