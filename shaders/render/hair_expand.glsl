@@ -16,6 +16,7 @@ struct Expanded {
 };
 
 #include "render/strand_hash.glsl"
+#include "render/strand_layout.glsl"
 
 Expanded expand_vertex(uint vertex_id) {
   const uint kEnd[6] = uint[6](0u, 0u, 1u, 1u, 0u, 1u);
@@ -25,15 +26,13 @@ Expanded expand_vertex(uint vertex_id) {
   const uint segment = vertex_id / 6u;
   const uint strand = segment / (n - 1u);
   const uint v = segment % (n - 1u) + kEnd[corner];
-  // The simulation's blocked vertex layout (shaders/sim/layout.glsl, TVK_STRAND_BLOCK = 32 in tressvk.h).
-  const uint index = (strand / 32u) * (32u * n) + v * 32u + strand % 32u;
+  const uint g = strand % dc.counts.y;  // its guide
 
   Expanded e;
-  e.position = anchors[strand % dc.counts.y].xyz + positions[index].xyz;
-  const uint g = strand % dc.counts.y;  // a follow's tangent is its guide's (the simulation stores the guides')
-  e.tangent = tangents[(g / 32u) * (32u * n) + v * 32u + g % 32u].xyz;
+  e.position = anchors[g].xyz + positions[strand_element(strand, v, n)].xyz;
+  e.tangent = tangents[strand_element(g, v, n)].xyz;
   e.along = float(v) / float(n - 1u);
-  e.group = min(guide_info[strand % dc.counts.y].x, 15u);
+  e.group = min(guide_info[g].x, 15u);
   const Material m = dc.materials[e.group];
   e.tint = 1.0 + m.fiber.z * (2.0 * strand_hash(strand) - 1.0);
   const float width = m.shape.y * mix(1.0, m.shape.z, e.along) * dc.lod.x;

@@ -8,20 +8,19 @@ struct DrawnVertex {
 };
 
 #include "render/strand_hash.glsl"
+#include "render/strand_layout.glsl"
 
 DrawnVertex drawn_vertex(uint id) {
   const uint n = dc.counts.x;
   const uint drawn = pc.params.y;
   const uint strand = id / n;
   const uint v = id % n;
-  // The blocked layout of the simulation (TVK_STRAND_BLOCK = 32).
-  const uint index = (strand / 32u) * (32u * n) + v * 32u + strand % 32u;
+  const uint g = strand % dc.counts.y;  // its guide
   DrawnVertex d;
-  d.position = anchors[strand % dc.counts.y].xyz + positions[index].xyz;
-  const uint g = strand % dc.counts.y;  // a follow's tangent is its guide's (the simulation stores the guides')
-  d.tangent = tangents[(g / 32u) * (32u * n) + v * 32u + g % 32u].xyz;
+  d.position = anchors[g].xyz + positions[strand_element(strand, v, n)].xyz;
+  d.tangent = tangents[strand_element(g, v, n)].xyz;
   d.along = float(v) / float(n - 1u);
-  d.material = dc.materials[min(guide_info[strand % dc.counts.y].x, 15u)];
+  d.material = dc.materials[min(guide_info[g].x, 15u)];
   d.tint = 1.0 + d.material.fiber.z * (2.0 * strand_hash(strand) - 1.0);
   // Reversed submission (order-independence test): the same strands written in the opposite order.
   d.slot = (pc.params.z & kFlagReverse) != 0u ? (drawn - 1u - strand) * n + v : id;
