@@ -227,9 +227,7 @@ int execute_perf_command(const PerfCommand& given) {
     }
     TvkInstance inst = crowd.front();
     // The strands the step error covers: the written ones.
-    const size_t written_vertices =
-        size_t{cmd.draw_strands == 0 ? groom.total_strands() : std::max(cmd.draw_strands, groom.guide_count())} *
-        groom.vertices_per_strand;
+    const size_t written_vertices = size_t{groom.simulated_strands(cmd.draw_strands)} * groom.vertices_per_strand;
 
     const std::vector<TvkSimParams> params(std::max<size_t>(1, groom.groups.size()), cmd.params);
     reference::Simulator ref(groom, params, cmd.settings);  // planner in step; loaded from the GPU for the error

@@ -43,10 +43,7 @@ void StepErrorProbe::start(const TvkSimFrame& frame, const host::HairState& befo
 double StepErrorProbe::finish(const host::HairState& after, uint32_t draw_strands) {
   if (!measured_) throw engine::Error("step error: no frame is being measured");
   // Follow strands above the draw count are not written (tressvk_set_draw_strands): only the written ones compare.
-  const size_t all = measured_->positions().size();
-  const size_t written =
-      draw_strands == 0 ? all
-                        : std::min(all, size_t{std::max(draw_strands, asset_.guide_count())} * asset_.vertices_per_strand);
+  const size_t written = size_t{asset_.simulated_strands(draw_strands)} * asset_.vertices_per_strand;
   const auto e = reference::position_error(std::span<const std::array<double, 3>>(after.positions).first(written),
                                            measured_->positions().first(written), measured_->median_strand_length());
   measured_.reset();

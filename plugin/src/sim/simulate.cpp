@@ -319,9 +319,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   // Still or not: every step of this frame against the last step run (a frame without steps leaves that as it was).
   // Follow hairs are written for the strands the host draws: more of them than the last frame that ran wrote is a
   // change of input (sleeping guides would leave the newly drawn follows unwritten), fewer is not.
-  const uint32_t rendered = inst.asset->cpu.total_strands();
-  work.follow_strands =
-      inst.draw_strands == 0 ? rendered : std::clamp(inst.draw_strands, inst.asset->rest.guide_count, rendered);
+  work.follow_strands = inst.asset->cpu.simulated_strands(inst.draw_strands);
   const bool more_follows = work.follow_strands > inst.follows_written;
   const bool still = still_and_keep(groups, gpu, work.steps, inst.last_step_inputs) && !more_follows;
   if (!gpu.steps.empty())

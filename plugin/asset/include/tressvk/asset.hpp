@@ -23,6 +23,7 @@
 //   guide[v] + R_root * offset * (1 + tip_separation * v / (N-1)).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -80,6 +81,11 @@ struct HairAsset {
     return vertices_per_strand ? static_cast<uint32_t>(rest_positions.size() / vertices_per_strand) : 0;
   }
   uint32_t total_strands() const { return guide_count() * (1 + follow_per_guide); }
+  // The rendered strands (guides, then follow layers) a frame simulates when the host draws `draw_strands` of them
+  // (tressvk_set_draw_strands; 0: every one): the guides always, the follow hairs of the drawn prefix.
+  uint32_t simulated_strands(uint32_t draw_strands) const {
+    return draw_strands == 0 ? total_strands() : std::clamp(draw_strands, guide_count(), total_strands());
+  }
 };
 
 }  // namespace tressvk::asset
