@@ -26,6 +26,9 @@ struct WarmUp {
 struct FrameTimes {
   std::vector<double> frame_ms;  // per timed frame, the frame's own timestamps
   std::vector<double> sim_ms;    // per timed frame, the sum of the plugin's pass timings (when it was given timestamps)
+  std::vector<double> host_ms;   // per timed frame, CPU time in the plugin's per-frame calls: tressvk_set_frame for
+                                 // every instance, tressvk_new_frame and tressvk_cmd_simulate (the frame loop's own
+                                 // waits for a free slot left out)
   uint32_t dispatches = 0;       // most dispatches in a frame (tressvk_get_recorded_dispatches)
   double steps_per_frame = 0;    // over every recorded frame
   double wall_ms = 0;            // CPU wall time of the timed frames, all of them

@@ -332,6 +332,8 @@ int execute_perf_command(const PerfCommand& given) {
         {"gpu_ms_per_frame_min", percentile(frame_ms, 0.0)},
         {"sim_pass_ms_per_frame", sim_ms.empty() ? 0.0 : percentile(sim_ms, 0.5)},
         {"wall_ms_per_frame", wall_ms / cmd.frames},
+        {"host_ms_per_frame", times.host_ms.empty() ? 0.0 : percentile(times.host_ms, 0.5)},
+        {"host_ms_per_frame_p99", times.host_ms.empty() ? 0.0 : percentile(times.host_ms, 0.99)},
         {"bytes_per_frame", frame_byte_count},
         {"achieved_gb_per_s", gpu_ms > 0 ? double(frame_byte_count) / (gpu_ms * 1e-3) * 1e-9 : 0.0},
         {"copy_ms", copy.ms},
