@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The README's "Measured" tables on a real GPU, in one command (portable binaries, cmake --preset portable):
+#
+#   scripts/gpu-readme.sh OUTDIR [BINDIR [DATADIR]]
+#
+# BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default: build/portable). DATADIR holds
+# tressfx/ratboy/Ratboy_mohawk.tfx (+ .tfxbone), baked here with 2 follow hairs for the simulation rows and 4 for the
+# rendering row (default: ../shared/data). Runs the simulation rows as docs/simulation.md's kernel table does
+# (scripts/gpu-perf.sh with MODELS=1 PATHS=default: `tressvk-bench perf --scene shake`, 240 and 60 Hz, the step error
+# after the timed frames) into OUTDIR/sim, the two rendering rows as docs/rendering.md does (scripts/gpu-render-bench.sh,
+# 1920x1080, no timestamps inside the calls, the error against the brute-force reference) into OUTDIR/render, then
+# prints both tables (scripts/readme-tables.py). About three minutes on an NVIDIA H100.
+set -euo pipefail
+OUT=${1:?usage: gpu-readme.sh OUTDIR [BINDIR [DATADIR]]}
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BIN=${2:-}
+DATA=${3:-$ROOT/../shared/data}
+mkdir -p "$OUT/sim" "$OUT/render"
+MODELS=1 PATHS=default "$ROOT/scripts/gpu-perf.sh" "$OUT/sim" "$BIN" "$DATA" > "$OUT/sim.log" 2>&1 ||
+  echo "gpu-perf.sh exited $? (see $OUT/sim.log)"
+ROWS='^(ratboy4|100k)-compute-1080p$' "$ROOT/scripts/gpu-render-bench.sh" "$OUT/render" "$BIN" "$DATA" \
+  > "$OUT/render.log" 2>&1 || echo "gpu-render-bench.sh exited $? (see $OUT/render.log)"
+python3 "$ROOT/scripts/readme-tables.py" "$OUT" | tee "$OUT/readme-tables.md"
