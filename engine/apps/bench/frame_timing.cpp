@@ -54,18 +54,17 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
     if (fr.number < first_timed) warm_ms.push_back(*ms);
     else if (fr.number < first_timed + frames) out.frame_ms.push_back(*ms);
   });
-  using Clock = std::chrono::steady_clock;
-  const auto ms_between = [](Clock::time_point a, Clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
+  const auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
   };
   const auto record = [&](uint32_t f) {
     const TvkSimFrame frame = frame_of(f);
     steps_total += planner.plan(frame).steps.size();
     ++frames_total;
-    const Clock::time_point h0 = Clock::now();
+    const auto h0 = std::chrono::steady_clock::now();
     for (TvkInstance inst : instances) host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
     host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
-    double host = ms_between(h0, Clock::now());
+    double host = since(h0);
     const engine::FrameLoop::Frame& fr = loop.begin();
     // The frame that last used this slot is complete now: its per-pass timings name the dispatches of a frame.
     TvkPassTiming timings[32];
@@ -77,16 +76,13 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
         out.sim_ms.push_back(ms);
     }
     fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-    const Clock::time_point h1 = Clock::now();
+    const auto h1 = std::chrono::steady_clock::now();
     host::check_tvk(host::record_simulate(ctx, fr.cmd, instances), ctx, "tressvk_cmd_simulate");
-    host += ms_between(h1, Clock::now());
+    host += since(h1);
     if (first_timed != UINT32_MAX && f < first_timed + frames) out.host_ms.push_back(host);
     out.dispatches = std::max(out.dispatches, tressvk_get_recorded_dispatches(ctx));
     fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     loop.end();
-  };
-  const auto since = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
   };
   const auto t_start = std::chrono::steady_clock::now();
   uint32_t f = 0;
