@@ -9,7 +9,7 @@
 # (scripts/gpu-perf.sh with MODELS=1 PATHS=default: `tressvk-bench perf --scene shake`, 240 and 60 Hz, the step error
 # after the timed frames) into OUTDIR/sim, the two rendering rows as docs/rendering.md does (scripts/gpu-render-bench.sh,
 # 1920x1080, no timestamps inside the calls, the error against the brute-force reference) into OUTDIR/render, then
-# prints both tables (scripts/readme-tables.py). About three minutes on an NVIDIA H100.
+# prints both tables (scripts/readme-tables.py).
 set -euo pipefail
 OUT=${1:?usage: gpu-readme.sh OUTDIR [BINDIR [DATADIR]]}
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
