@@ -132,3 +132,16 @@ if(draw_error GREATER 1e-5)
   message(FATAL_ERROR "perf --draw-strands 60: step error ${draw_error} over 1e-5 on the strands written")
 endif()
 message(STATUS "guides and half a follow layer drawn: step error ${draw_error}")
+
+# --bones drives an asset's bones every frame (a skinned character's CPU time); a groom without bone weights is refused
+# before anything runs, exit 1, the message naming the option. (The skinning itself is checked against the reference
+# by the plugin's bone-skinned Ratboy test; the bench's bones are the same motion, reference::rocking_bones.)
+execute_process(COMMAND "${BENCH}" perf --builtin curly --guides 8 --bones --frames 1 --json "${OUT_DIR}/bones.json"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "--bones: the groom curly has no bone weights")
+  message(FATAL_ERROR "perf --bones on a groom without bones: exit ${rc}, expected 1 naming --bones:\n${err}")
+endif()
+if(EXISTS "${OUT_DIR}/bones.json")
+  message(FATAL_ERROR "perf --bones refused, but wrote ${OUT_DIR}/bones.json")
+endif()
+message(STATUS "--bones without bone weights refused: ${err}")

@@ -758,26 +758,9 @@ TEST_CASE("bone-skinned hair matches the reference (Ratboy, 105 bones rocking ou
   const uint32_t bones = static_cast<uint32_t>(hair.bone_names.size());
   REQUIRE(bones > 1);
   side_by_side(hair, [&](test::GpuInstance& gpu, reference::Simulator& ref, const reference::SceneGeometry& geometry) {
-    // Bone matrices map the asset's bind space to instance space; the asset's positions are relative to its
-    // origin, so the pivot is the head centre expressed in bind space (origin added back).
-    const reference::Vec3 c = geometry.head_centre + reference::Vec3{hair.origin[0], hair.origin[1], hair.origin[2]};
-    std::vector<TvkBoneMatrix> matrices(bones);
     double worst = 0;
     for (uint32_t f = 0; f < 40; ++f) {
-      for (uint32_t b = 0; b < bones; ++b) {
-        const double angle = 0.15 * std::sin(2.0 * 3.14159265358979 * 1.5 * f / 60.0 + 0.37 * b);
-        const double cs = std::cos(angle), sn = std::sin(angle);
-        // Rotation about Y through c: x' = R (x - c) + c.
-        const double r[3][3] = {{cs, 0, sn}, {0, 1, 0}, {-sn, 0, cs}};
-        for (int i = 0; i < 3; ++i) {
-          double t = c[i];
-          for (int j = 0; j < 3; ++j) {
-            matrices[b].rows[i][j] = static_cast<float>(r[i][j]);
-            t -= r[i][j] * c[j];
-          }
-          matrices[b].rows[i][3] = static_cast<float>(t);
-        }
-      }
+      const std::vector<TvkBoneMatrix> matrices = reference::rocking_bones(bones, hair.origin, f, geometry);
       TvkSimFrame frame = reference::scene_frame("settle", f, geometry);
       frame.bones = matrices.data();
       frame.bone_count = bones;

@@ -158,6 +158,9 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
   perf->add_option("--params", cmd.params_path, "JSON parameter file (as compare --params)")->check(CLI::ExistingFile);
   perf->add_option("--json", cmd.json_path, "write the results as JSON");
   perf->add_option("--device", cmd.device, "device index or name substring (default: discrete GPU first)");
+  perf->add_flag("--bones", cmd.bones,
+                 "drive the asset's bones every frame (each turning about the head centre out of phase; the asset "
+                 "needs bone weights): the host's CPU time then covers a skinned character's per-bone work");
   perf->add_flag("--table-row", cmd.table_row, "print one Markdown table row instead of the report");
   perf->add_flag("--validation", cmd.validation, "enable the Vulkan validation layer; any message fails the run");
 }
@@ -206,6 +209,11 @@ int execute_perf_command(const PerfCommand& given) {
     }
     groom_name = cmd.builtin;
   }
+  if (cmd.bones && (groom.bone_names.empty() || groom.bone_weights.empty())) {
+    std::fprintf(stderr, "tressvk-bench perf: --bones: the groom %s has no bone weights (bake it with --bones FILE.tfxbone)\n",
+                 groom_name.c_str());
+    return 1;
+  }
 
   nlohmann::json out;
   try {
@@ -241,9 +249,20 @@ int execute_perf_command(const PerfCommand& given) {
     warm.frames = cmd.warmup;
     warm.min_ms = cmd.warmup_ms;
     warm.max_ms = std::max(cmd.warmup_ms, cmd.warmup_ms_max);
-    const FrameTimes times = time_frames(
-        dev, ctx, crowd, ref.planner(), [&](uint32_t f) { return reference::scene_frame(cmd.scene, f, geometry); },
-        warm, cmd.frames, cmd.frames_in_flight);
+    // With --bones each frame's matrices live here until the next frame's are made (set_frame copies them).
+    std::vector<TvkBoneMatrix> bones;
+    const uint32_t bone_count = static_cast<uint32_t>(groom.bone_names.size());
+    const auto frame_of = [&](uint32_t f) {
+      TvkSimFrame frame = reference::scene_frame(cmd.scene, f, geometry);
+      if (cmd.bones) {
+        bones = reference::rocking_bones(bone_count, groom.origin, f, geometry);
+        frame.bones = bones.data();
+        frame.bone_count = bone_count;
+      }
+      return frame;
+    };
+    const FrameTimes times = time_frames(dev, ctx, crowd, ref.planner(), frame_of, warm, cmd.frames,
+                                         cmd.frames_in_flight);
     const uint32_t total = times.warmup_frames + cmd.frames;
     const std::vector<double>& frame_ms = times.frame_ms;
     const std::vector<double>& sim_ms = times.sim_ms;
@@ -281,7 +300,7 @@ int execute_perf_command(const PerfCommand& given) {
       const uint32_t f = total + e;
       const host::HairState before = host::read_hair_state(dev, inst);
       ref.set_state(before.positions, before.previous, before.previous_previous);
-      const TvkSimFrame frame = reference::scene_frame(cmd.scene, f, geometry);
+      const TvkSimFrame frame = frame_of(f);
       ref.advance(frame);
       for (TvkInstance i : crowd) host::check_tvk(tressvk_set_frame(i, &frame), ctx, "tressvk_set_frame");
       host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
@@ -315,6 +334,7 @@ int execute_perf_command(const PerfCommand& given) {
         {"follow_per_guide", groom.follow_per_guide},
         {"guide_vertices", guide_vertices},
         {"instances", cmd.instances},
+        {"bones", cmd.bones ? groom.bone_names.size() : 0},
         {"step_rate_hz", cmd.settings.time.step_rate},
         {"sleep_below", cmd.settings.sleep_below},
         {"guides_asleep", guides_asleep},

@@ -29,6 +29,7 @@ struct PerfCommand {
   bool validation = false;
   bool table_row = false;
   bool pass_timings = false;  // the plugin's per-pass timestamps (they add to the frame time)
+  bool bones = false;  // drive the asset's bones every frame (reference::rocking_bones), as a skinned character does
 };
 
 void add_perf_command(CLI::App& app, PerfCommand& cmd);

@@ -209,4 +209,26 @@ TvkSimFrame scene_frame(std::string_view name, uint32_t frame_index, const Scene
   return f;
 }
 
+std::vector<TvkBoneMatrix> rocking_bones(uint32_t bone_count, const std::array<double, 3>& origin,
+                                         uint32_t frame_index, const SceneGeometry& geometry) {
+  // The pivot is the head centre expressed in bind space (the asset's positions are relative to its origin).
+  const Vec3 c = geometry.head_centre + Vec3{origin[0], origin[1], origin[2]};
+  std::vector<TvkBoneMatrix> matrices(bone_count);
+  for (uint32_t b = 0; b < bone_count; ++b) {
+    const double angle = 0.15 * std::sin(2.0 * std::numbers::pi * 1.5 * frame_index * kSceneFrameDt + 0.37 * b);
+    const double cs = std::cos(angle), sn = std::sin(angle);
+    // Rotation about Y through c: x' = R (x - c) + c.
+    const double r[3][3] = {{cs, 0, sn}, {0, 1, 0}, {-sn, 0, cs}};
+    for (int i = 0; i < 3; ++i) {
+      double t = c[i];
+      for (int j = 0; j < 3; ++j) {
+        matrices[b].rows[i][j] = static_cast<float>(r[i][j]);
+        t -= r[i][j] * c[j];
+      }
+      matrices[b].rows[i][3] = static_cast<float>(t);
+    }
+  }
+  return matrices;
+}
+
 }  // namespace tressvk::reference

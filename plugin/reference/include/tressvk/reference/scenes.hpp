@@ -12,6 +12,7 @@
 //   far       shake, 10 km from the world origin
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -42,5 +43,12 @@ inline constexpr double kFarDistance = 10000.0;  // m, the far scene's offset al
 
 // Throws std::invalid_argument for an unknown scene name. Bones are not set (rigid head).
 TvkSimFrame scene_frame(std::string_view name, uint32_t frame_index, const SceneGeometry& geometry);
+
+// Bone matrices for an asset with bone weights (TvkSimFrame::bones, bind space -> instance space): every bone turns
+// about the vertical through the head centre by up to 0.15 rad at 1.5 Hz, each with its own phase (0.37 rad a bone),
+// so that strands blending several bones see different motions. origin: the asset's origin (bind space is relative to
+// it). Set on a scene's frame, the bones move the hair within the scene's head transform.
+std::vector<TvkBoneMatrix> rocking_bones(uint32_t bone_count, const std::array<double, 3>& origin,
+                                         uint32_t frame_index, const SceneGeometry& geometry);
 
 }  // namespace tressvk::reference
