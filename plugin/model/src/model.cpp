@@ -232,4 +232,12 @@ double median_strand_length(const ModelRest& m) {
   return *mid;
 }
 
+std::vector<uint8_t> used_bones(const ModelRest& rest) {
+  std::vector<uint8_t> used(rest.bone_count, 0);
+  for (size_t g = 0; g < rest.bone_index.size() && g < rest.bone_weight.size(); ++g)
+    for (size_t k = 0; k < 4; ++k)
+      if (rest.bone_weight[g][k] != 0.0 && rest.bone_index[g][k] < rest.bone_count) used[rest.bone_index[g][k]] = 1;
+  return used;
+}
+
 }  // namespace tressvk::model

@@ -11,6 +11,7 @@ namespace tressvk::reference {
 Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
                      const TvkSimSettings& settings, const PlannerLimits& limits)
     : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
+  planner_.set_used_bones(used_bones(rest_));  // as the plugin's instances (exact for every bone a strand reads)
   asset_inv_mass_ = rest_.inv_mass;
   set_params(group_params);
   switch (resolve_model(settings.model)) {

@@ -298,7 +298,7 @@ struct Crowd {
 TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const Crowd& crowd) {
   work.inst = &inst;
   work.plan = inst.planner->plan(inst.frame);
-  const model::GpuFrame gpu = model::to_gpu(work.plan);
+  const model::GpuFrame gpu = model::to_gpu(work.plan, inst.used_bones);
   work.steps = static_cast<uint32_t>(work.plan.steps.size());
   work.skin_stride = gpu.skin_stride;
   if (work.steps > TVK_MAX_STEPS_PER_FRAME)

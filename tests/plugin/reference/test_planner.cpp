@@ -226,6 +226,68 @@ TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][plan
   CHECK(g.local_stiffness == Catch::Approx(0.45));
 }
 
+// A skinned character's bones that no strand reads (FramePlanner::set_used_bones) get the instance's rigid transform,
+// worked out once a step instead of once a bone: every bone a strand reads keeps its data bit for bit, through
+// interpolated steps, a teleport, a hitch and a frame without bones, and to_gpu leaves the others zero.
+TEST_CASE("planner: bones no strand reads cost nothing and change nothing a strand reads", "[reference][planner]") {
+  constexpr uint32_t kBones = 7;
+  std::vector<uint8_t> used(kBones, 0);
+  used[1] = used[4] = used[6] = 1;
+  FramePlanner all(settings_120hz(), {0.01, 1.6, -0.02}, kBones);
+  FramePlanner some(settings_120hz(), {0.01, 1.6, -0.02}, kBones);
+  some.set_used_bones(used);
+  CHECK_THROWS(some.set_used_bones(std::vector<uint8_t>(kBones + 1, 1)));
+  std::vector<TvkBoneMatrix> bones(kBones, TvkBoneMatrix TVK_BONE_MATRIX_IDENTITY_INIT);
+  uint32_t compared = 0;
+  for (int i = 0; i < 40; ++i) {
+    TvkSimFrame f = still_frame(i == 25 ? 0.25 : 1.0 / 50.0);  // 50 Hz: steps between frames; frame 25 a hitch
+    f.transform.rotation[1] = std::sin(0.1 * std::sin(0.3 * i));
+    f.transform.rotation[3] = std::cos(0.1 * std::sin(0.3 * i));
+    f.transform.translation[2] = 0.02 * i;
+    f.teleport = i == 12 ? 1 : 0;
+    for (uint32_t b = 0; b < kBones; ++b) {
+      const double a = 0.2 * std::sin(0.4 * i + 0.9 * b);
+      const double c = std::cos(a), sn = std::sin(a);
+      bones[b] = TvkBoneMatrix TVK_BONE_MATRIX_IDENTITY_INIT;
+      bones[b].rows[0][0] = static_cast<float>(c);
+      bones[b].rows[0][2] = static_cast<float>(sn);
+      bones[b].rows[2][0] = static_cast<float>(-sn);
+      bones[b].rows[2][2] = static_cast<float>(c);
+      bones[b].rows[1][3] = static_cast<float>(0.01 * b * std::sin(0.2 * i));
+    }
+    if (i != 30) {  // frame 30 runs the rigid transform alone
+      f.bones = bones.data();
+      f.bone_count = kBones;
+    }
+    const FramePlan a = all.plan(f), b = some.plan(f);
+    REQUIRE(a.steps.size() == b.steps.size());
+    const GpuFrame ga = to_gpu(a), gb = to_gpu(b, used);
+    REQUIRE(ga.skin.size() == gb.skin.size());
+    for (size_t k = 0; k < a.steps.size(); ++k) {
+      REQUIRE(a.steps[k].skin.size() == b.steps[k].skin.size());
+      for (size_t t = 0; t < a.steps[k].skin.size(); ++t) {
+        const bool reads = a.steps[k].skin.size() == 1 || used[t] != 0;
+        const SkinTransform& x = a.steps[k].skin[t];
+        const SkinTransform& y = b.steps[k].skin[t];
+        const size_t at = (k * a.steps[k].skin.size() + t) * tressvk::sim::kSkinVec4PerBone;
+        if (reads) {
+          CHECK(x.rows == y.rows);
+          CHECK(x.move_rows == y.move_rows);
+          CHECK((x.rotation.x == y.rotation.x && x.rotation.w == y.rotation.w));
+          CHECK((x.delta.x == y.delta.x && x.delta.y == y.delta.y && x.delta.w == y.delta.w));
+          CHECK((x.delta_before.y == y.delta_before.y && x.delta_before.w == y.delta_before.w));
+          for (uint32_t v = 0; v < tressvk::sim::kSkinVec4PerBone; ++v) CHECK(ga.skin[at + v] == gb.skin[at + v]);
+          ++compared;
+        } else {
+          for (uint32_t v = 0; v < tressvk::sim::kSkinVec4PerBone; ++v)
+            CHECK(gb.skin[at + v] == tressvk::sim::Vec4{0.0f, 0.0f, 0.0f, 0.0f});
+        }
+      }
+    }
+  }
+  CHECK(compared > 200);  // 39 skinned frames of 2-3 steps, 3 bones a step
+}
+
 TEST_CASE("planner: bad input is rejected with the field named", "[reference][planner]") {
   FramePlanner planner(settings_120hz(), {0, 0, 0}, 0);
   TvkSimFrame f = still_frame(-1.0);

@@ -112,4 +112,7 @@ inline bool rigid_by_rule(double strand_length, double rigid_below) {
   return static_cast<float>(strand_length) < static_cast<float>(rigid_below);
 }
 
+// The bones some guide reads (a nonzero weight), one entry a bone of the asset (FramePlanner::set_used_bones).
+std::vector<uint8_t> used_bones(const ModelRest& rest);
+
 }  // namespace tressvk::model

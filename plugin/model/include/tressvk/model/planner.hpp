@@ -91,6 +91,11 @@ class FramePlanner {
   // Throws std::invalid_argument for bad input (negative dt, bone_count mismatch, too many capsules...).
   FramePlan plan(const TvkSimFrame& frame);
 
+  // The bones some strand reads (a nonzero bone weight; empty: every bone). A bone no strand reads gets the
+  // instance's rigid transform instead of its own, worked out once a step: Ratboy's mohawk reads 21 of its 105.
+  // Throws std::invalid_argument when the size is not the asset's bone count.
+  void set_used_bones(std::vector<uint8_t> used);
+
   double step_length() const { return h_; }
   uint64_t steps_taken() const { return step_counter_; }
   void set_settings(const TvkSimSettings& settings);
@@ -104,6 +109,10 @@ class FramePlanner {
   PlannerLimits limits_;
   std::array<double, 3> asset_origin_;
   uint32_t bone_count_;
+  std::vector<uint8_t> used_bones_;  // set_used_bones; empty: every bone
+  // Bone 0 is worked out whatever reads it: a frame that switches from bones to the rigid transform compares its map
+  // with the previous step's first one (plan).
+  bool bone_used(size_t b) const { return b == 0 || used_bones_.empty() || used_bones_[b] != 0; }
   double h_ = 0;
   double accumulator_ = 0;   // in steps
   uint64_t step_counter_ = 0;
@@ -161,7 +170,9 @@ struct GpuFrame {
   std::vector<sim::Vec4> skin;         // steps * bones_per_step * kSkinVec4PerBone (substep s at s * skin_stride)
   uint32_t skin_stride = 0;            // vec4 per substep
 };
-GpuFrame to_gpu(const FramePlan& plan);
+// used_bones (FramePlanner::set_used_bones; empty: every bone): the bones no strand reads are left zero in a
+// skinned frame's skin data (no shader reads them).
+GpuFrame to_gpu(const FramePlan& plan, std::span<const uint8_t> used_bones = {});
 sim::GroupParams to_gpu(const GroupStep& group);
 
 // ---- The strand models (TvkSimSettings::model; the reference's SimModel) -------------------------------------------
