@@ -155,6 +155,16 @@ uint32_t FramePlanner::frame_cap(double dt) {
 
 FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   validate_frame(frame, bone_count_);
+  return plan_validated(frame);
+}
+
+void FramePlanner::recycle(FramePlan&& plan) {
+  for (Substep& st : plan.steps) spare_skin_.push_back(std::move(st.skin));
+  plan.steps.clear();
+  if (plan.steps.capacity() > spare_steps_.capacity()) spare_steps_ = std::move(plan.steps);
+}
+
+FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
   const bool skinned = frame.bones != nullptr;
   Pose now{{frame.transform.translation[0], frame.transform.translation[1], frame.transform.translation[2]},
            checked_rotation(frame.transform.rotation, "transform.rotation")};
@@ -195,6 +205,8 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   double whole = std::floor(accumulator_ + 1e-6);
   uint32_t n = static_cast<uint32_t>(whole);
   FramePlan plan;
+  plan.steps = std::move(spare_steps_);  // recycled storage, if any (empty)
+  plan.steps.clear();
   plan.skinned = skinned;
   // A leftover below 1e-6 steps is the float rounding of dt (1/60 s is 4.00000016 steps at 240 Hz), not time: dropped,
   // so a host rate that divides the step rate puts every frame's last step exactly at the frame's pose.
@@ -246,6 +258,11 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
 
   auto make_step = [&](const Pose& pose, const std::vector<Pose>& bones, uint32_t index, Vec3 res) {
     Substep st;
+    if (!spare_skin_.empty()) {
+      st.skin = std::move(spare_skin_.back());
+      spare_skin_.pop_back();
+      st.skin.clear();
+    }
     st.skin.reserve(skinned ? bones.size() : 1);
     st.h = h_;
     st.index = index;
@@ -501,11 +518,17 @@ sim::Vec4 f4(Quat q) {
 
 GpuFrame to_gpu(const FramePlan& plan, std::span<const uint8_t> used_bones) {
   GpuFrame out;
+  to_gpu_into(plan, used_bones, out);
+  return out;
+}
+
+void to_gpu_into(const FramePlan& plan, std::span<const uint8_t> used_bones, GpuFrame& out) {
   out.skin_stride = plan.steps.empty() ? 0u : static_cast<uint32_t>(plan.steps.front().skin.size() * sim::kSkinVec4PerBone);
+  out.steps.clear();
   out.steps.reserve(plan.steps.size());
   size_t transforms = 0;
   for (const Substep& st : plan.steps) transforms += st.skin.size();
-  out.skin.resize(transforms * sim::kSkinVec4PerBone);  // zero: what a bone no strand reads keeps
+  out.skin.assign(transforms * sim::kSkinVec4PerBone, sim::Vec4{});  // zero: what a bone no strand reads keeps
   sim::Vec4* v = out.skin.data();
   const auto row = [](const std::array<double, 4>& r) {
     return sim::Vec4{static_cast<float>(r[0]), static_cast<float>(r[1]), static_cast<float>(r[2]),
@@ -536,7 +559,6 @@ GpuFrame to_gpu(const FramePlan& plan, std::span<const uint8_t> used_bones) {
       for (size_t r = 0; r < 3; ++r) v[6 + r] = row(t.move_rows[r]);
     }
   }
-  return out;
 }
 
 sim::GroupParams to_gpu(const GroupStep& g) {

@@ -297,8 +297,9 @@ struct Crowd {
 // Plans the instance's frame and writes its parameters into this frame's ring slice.
 TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const Crowd& crowd) {
   work.inst = &inst;
-  work.plan = inst.planner->plan(inst.frame);
-  const model::GpuFrame gpu = model::to_gpu(work.plan, inst.used_bones);
+  work.plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
+  model::to_gpu_into(work.plan, inst.used_bones, inst.gpu_frame);
+  const model::GpuFrame& gpu = inst.gpu_frame;
   work.steps = static_cast<uint32_t>(work.plan.steps.size());
   work.skin_stride = gpu.skin_stride;
   if (work.steps > TVK_MAX_STEPS_PER_FRAME)
@@ -580,6 +581,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
     inst.steps_last_frame = w.steps;
     ++inst.frames;
     inst.sim_origin = w.plan.sim_origin;
+    inst.planner->recycle(std::move(w.plan));
     inst.frame.teleport = 0;
     inst.frame.reset = 0;
     inst.frame.dt = 0.0f;
