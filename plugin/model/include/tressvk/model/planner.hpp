@@ -92,9 +92,6 @@ class FramePlanner {
   FramePlan plan(const TvkSimFrame& frame);
   // The same for a frame validate_frame has accepted (the plugin checks every frame at tressvk_set_frame).
   FramePlan plan_validated(const TvkSimFrame& frame);
-  // Hands a used plan's storage back: the next plans reuse it instead of allocating (a skinned frame's transforms
-  // are tens of kilobytes a step).
-  void recycle(FramePlan&& plan);
 
   // The bones some strand reads (a nonzero bone weight; empty: every bone). A bone no strand reads gets the
   // instance's rigid transform instead of its own, worked out once a step: Ratboy's mohawk reads 21 of its 105.
@@ -139,8 +136,6 @@ class FramePlanner {
   std::vector<Quat> last_delta_;  // skin deltas of the last planned step
   std::vector<std::array<std::array<double, 4>, 3>> last_rows_;  // skin maps of the last planned step
   std::vector<CapsuleSim> last_caps_;  // capsules of the last planned step (its frame)
-  std::vector<std::vector<SkinTransform>> spare_skin_;  // recycled storage (recycle)
-  std::vector<Substep> spare_steps_;
   // The host's recent frame lengths (frames with dt > 0), for telling a sustained low rate from a hitch.
   static constexpr uint32_t kRateFrames = 8;
   std::array<double, kRateFrames> recent_dt_{};
