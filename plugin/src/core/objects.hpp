@@ -42,7 +42,6 @@ struct TvkInstance_T {
   std::vector<TvkBoneMatrix> bones;     // copy of frame.bones
   bool frame_set = false;
   std::unique_ptr<tressvk::model::FramePlanner> planner;
-  std::vector<uint8_t> used_bones;  // the bones some guide reads (model::used_bones): the others get no skinning work
 
   // Dynamic state, bindings 0..3, the counters (binding 15, host-visible) and the guides' anchors (binding 16).
   tressvk::GpuBuffer positions, prev, prevprev, tangents, counters, anchors;

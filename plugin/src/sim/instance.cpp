@@ -163,8 +163,7 @@ TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInf
     // The planner checks the settings and names the field at fault (e.g. time.step_rate); it throws.
     inst->planner = std::make_unique<tressvk::model::FramePlanner>(settings, info->asset->cpu.origin,
                                                                         info->asset->rest.bone_count);
-    inst->used_bones = tressvk::model::used_bones(info->asset->rest);
-    inst->planner->set_used_bones(inst->used_bones);
+    inst->planner->set_used_bones(tressvk::model::used_bones(info->asset->rest));
     if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) return r;
     // Handed to the host: only now does the instance count as a user of the asset.
     ++info->asset->users;

@@ -97,6 +97,7 @@ class FramePlanner {
   // instance's rigid transform instead of its own, worked out once a step: Ratboy's mohawk reads 21 of its 105.
   // Throws std::invalid_argument when the size is not the asset's bone count.
   void set_used_bones(std::vector<uint8_t> used);
+  std::span<const uint8_t> used_bones() const { return used_bones_; }
 
   double step_length() const { return h_; }
   uint64_t steps_taken() const { return step_counter_; }
