@@ -64,6 +64,31 @@ bool respace_short_segments(std::vector<Vec3>& pos, const std::vector<double>& i
   return true;
 }
 
+// Renumbers the guides' bones to the ones some guide reads (a nonzero weight), in the asset's order
+// (ModelRest::bone_source); a zero weight's index becomes the guide's first weighted bone.
+void compact_bones(ModelRest& m) {
+  m.bone_source.clear();
+  m.bone_count = 0;
+  if (m.asset_bone_count == 0) return;
+  std::vector<uint32_t> compact(m.asset_bone_count, UINT32_MAX);
+  for (size_t g = 0; g < m.bone_index.size(); ++g)
+    for (size_t k = 0; k < 4; ++k)
+      if (m.bone_weight[g][k] != 0.0) compact[m.bone_index[g][k]] = 0;
+  for (uint32_t b = 0; b < m.asset_bone_count; ++b) {
+    if (compact[b] == UINT32_MAX) continue;
+    compact[b] = static_cast<uint32_t>(m.bone_source.size());
+    m.bone_source.push_back(b);
+  }
+  m.bone_count = static_cast<uint32_t>(m.bone_source.size());
+  for (size_t g = 0; g < m.bone_index.size(); ++g) {
+    uint32_t first = UINT32_MAX;
+    for (size_t k = 0; k < 4; ++k)
+      if (m.bone_weight[g][k] != 0.0 && first == UINT32_MAX) first = compact[m.bone_index[g][k]];
+    for (size_t k = 0; k < 4; ++k)
+      m.bone_index[g][k] = m.bone_weight[g][k] != 0.0 ? compact[m.bone_index[g][k]] : first;
+  }
+}
+
 }  // namespace
 
 ModelRest build_model_rest(const asset::HairAsset& a) {
@@ -84,7 +109,7 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
   m.follow_per_guide = a.follow_per_guide;
   m.asset_tip_separation = a.tip_separation;
   m.asset_origin = a.origin;
-  m.bone_count = a.bone_weights.empty() ? 0u : static_cast<uint32_t>(a.bone_names.size());
+  m.asset_bone_count = a.bone_weights.empty() ? 0u : static_cast<uint32_t>(a.bone_names.size());
   m.group_count = std::max<uint32_t>(1u, static_cast<uint32_t>(a.groups.size()));
 
   m.rest_pos.resize(vcount);
@@ -121,11 +146,11 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
       m.group[g] = a.guide_group[g];
       require(m.group[g] < m.group_count, "guide_group[" + std::to_string(g) + "] names no group");
     }
-    if (m.bone_count > 0) {
+    if (m.asset_bone_count > 0) {
       const auto& bw = a.bone_weights[g];
       double sum = 0;
       for (uint32_t k = 0; k < 4; ++k) {
-        require(bw.weight[k] == 0.0f || bw.bone[k] < m.bone_count,
+        require(bw.weight[k] == 0.0f || bw.bone[k] < m.asset_bone_count,
                 "bone_weights[" + std::to_string(g) + "] names bone " + std::to_string(bw.bone[k]));
         m.bone_index[g][k] = bw.weight[k] == 0.0f ? 0u : bw.bone[k];
         m.bone_weight[g][k] = bw.weight[k];
@@ -134,6 +159,7 @@ ModelRest build_model_rest(const asset::HairAsset& a) {
       require(sum > 0, "bone_weights[" + std::to_string(g) + "] are all zero");
     }
   }
+  compact_bones(m);
   // Strands far shorter than the groom's typical strand are carried rigidly by the skinning (every vertex pinned),
   // by each group's TvkSimParams::rigid_below at run time (applied by the GPU and the reference, not here, so that
   // instances of one asset can choose): counted here for the default rule.
@@ -230,14 +256,6 @@ double median_strand_length(const ModelRest& m) {
   auto mid = l.begin() + static_cast<std::ptrdiff_t>(l.size() / 2);
   std::nth_element(l.begin(), mid, l.end());
   return *mid;
-}
-
-std::vector<uint8_t> used_bones(const ModelRest& rest) {
-  std::vector<uint8_t> used(rest.bone_count, 0);
-  for (size_t g = 0; g < rest.bone_index.size() && g < rest.bone_weight.size(); ++g)
-    for (size_t k = 0; k < 4; ++k)
-      if (rest.bone_weight[g][k] != 0.0 && rest.bone_index[g][k] < rest.bone_count) used[rest.bone_index[g][k]] = 1;
-  return used;
 }
 
 }  // namespace tressvk::model

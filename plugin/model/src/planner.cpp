@@ -129,9 +129,11 @@ void FramePlanner::set_settings(const TvkSimSettings& settings) {
   h_ = 1.0 / static_cast<double>(settings.time.step_rate);
 }
 
-void FramePlanner::set_used_bones(std::vector<uint8_t> used) {
-  require(used.empty() || used.size() == bone_count_, "set_used_bones: one entry a bone of the asset");
-  used_bones_ = std::move(used);
+void FramePlanner::set_bone_source(std::vector<uint32_t> source) {
+  for (size_t i = 0; i < source.size(); ++i)
+    require(source[i] < bone_count_ && (i == 0 || source[i] > source[i - 1]),
+            "set_bone_source: entries must be increasing bones of the asset");
+  bone_source_ = std::move(source);
 }
 
 uint32_t FramePlanner::frame_cap(double dt) {
@@ -164,13 +166,10 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
            checked_rotation(frame.transform.rotation, "transform.rotation")};
   std::vector<Pose> bones_now;
   if (skinned) {
-    bones_now.reserve(frame.bone_count);
-    for (uint32_t b = 0; b < frame.bone_count; ++b) {
-      if (!bone_used(b)) {  // no strand reads it: its pose is never used either
-        bones_now.push_back({{0, 0, 0}, Quat{}});
-        continue;
-      }
-      BonePose bp = bone_pose(frame.bones[b]);  // validated above
+    const size_t count = skin_bones();
+    bones_now.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+      BonePose bp = bone_pose(frame.bones[source_bone(i)]);  // validated above
       bones_now.push_back({bp.t, bp.r});
     }
   }
@@ -250,6 +249,7 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
 
   auto make_step = [&](const Pose& pose, const std::vector<Pose>& bones, uint32_t index, Vec3 res) {
     Substep st;
+    st.skinned = skinned;
     st.skin.reserve(skinned ? bones.size() : 1);
     st.h = h_;
     st.index = index;
@@ -285,16 +285,7 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
     if (skinned) {
       // asset point x (relative to the asset origin a) -> instance R_b (a + x) + t_b -> simulation space
       // R (R_b (a + x) + t_b) + T - O = R R_b x + R (R_b a + t_b - a) + res, with res = T + R a - O.
-      // A bone no strand reads (set_used_bones) gets the instance's rigid transform, made once a step.
-      SkinTransform rigid;
-      bool have_rigid = false;
       for (size_t i = 0; i < bones.size(); ++i) {
-        if (!bone_used(i)) {
-          if (!have_rigid) rigid = transform(pose.r, res);
-          have_rigid = true;
-          st.skin.push_back(rigid);
-          continue;
-        }
         const Pose& b = bones[i];
         st.skin.push_back(transform(normalize(quat_mul(pose.r, b.r)),
                                     quat_rotate(pose.r, quat_rotate(b.r, a) + b.t - a) + res));
@@ -352,7 +343,7 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
     Vec3 t_frac = alpha == 1.0 ? now.t - base : frac0 + alpha * delta;
     bones.clear();
     for (size_t b = 0; b < bones_now.size(); ++b) {
-      bones.push_back(alpha == 1.0 || !bone_used(b) ? bones_now[b]
+      bones.push_back(alpha == 1.0 ? bones_now[b]
                                    : Pose{mix(host_last_bones_[b].t, bones_now[b].t, alpha),
                                           slerp(host_last_bones_[b].r, bones_now[b].r, alpha)});
     }
@@ -378,23 +369,7 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
     // rigid motion. From double-precision poses, so no float rounding of positions is amplified into it.
     const bool have_last = last_rot_.size() == st.skin.size();
     const bool have_last_delta = last_delta_.size() == st.skin.size();
-    // The bones no strand reads hold one transform and, step after step, one history: the first of them is worked
-    // out, the others copy it (the same inputs give the same outputs).
-    size_t first_unused = st.skin.size();
-    const auto copies_unused = [&](size_t i) {
-      if (!skinned || bone_used(i)) return false;
-      if (first_unused == st.skin.size()) {
-        first_unused = i;
-        return false;
-      }
-      return true;
-    };
     for (size_t i = 0; i < st.skin.size(); ++i) {
-      if (copies_unused(i)) {
-        st.skin[i].delta = st.skin[first_unused].delta;
-        st.skin[i].delta_before = st.skin[first_unused].delta_before;
-        continue;
-      }
       const Quat before = have_last ? quat_mul(st.teleport, last_rot_[i]) : st.skin[i].rotation;
       Quat d = normalize(quat_mul(st.skin[i].rotation, conjugate(before)));
       if (d.w < 0) d = {-d.x, -d.y, -d.z, -d.w};
@@ -411,10 +386,6 @@ FramePlan FramePlanner::plan_validated(const TvkSimFrame& frame) {
     const auto rc = matrix_from_quat(st.teleport);
     for (size_t i = 0; i < st.skin.size(); ++i) {
       if (last_rows_.empty()) break;
-      if (skinned && !bone_used(i) && i > first_unused) {
-        st.skin[i].move_rows = st.skin[first_unused].move_rows;
-        continue;
-      }
       const auto& before = last_rows_[last_rows_.size() == st.skin.size() ? i : 0];
       for (size_t r = 0; r < 3; ++r) {
         for (size_t c = 0; c < 4; ++c) {
@@ -503,19 +474,19 @@ sim::Vec4 f4(Quat q) {
 }
 }  // namespace
 
-GpuFrame to_gpu(const FramePlan& plan, std::span<const uint8_t> used_bones) {
+GpuFrame to_gpu(const FramePlan& plan) {
   GpuFrame out;
-  to_gpu_into(plan, used_bones, out);
+  to_gpu_into(plan, out);
   return out;
 }
 
-void to_gpu_into(const FramePlan& plan, std::span<const uint8_t> used_bones, GpuFrame& out) {
+void to_gpu_into(const FramePlan& plan, GpuFrame& out) {
   out.skin_stride = plan.steps.empty() ? 0u : static_cast<uint32_t>(plan.steps.front().skin.size() * sim::kSkinVec4PerBone);
   out.steps.clear();
   out.steps.reserve(plan.steps.size());
   size_t transforms = 0;
   for (const Substep& st : plan.steps) transforms += st.skin.size();
-  out.skin.assign(transforms * sim::kSkinVec4PerBone, sim::Vec4{});  // zero: what a bone no strand reads keeps
+  out.skin.resize(transforms * sim::kSkinVec4PerBone);  // every element written below
   sim::Vec4* v = out.skin.data();
   const auto row = [](const std::array<double, 4>& r) {
     return sim::Vec4{static_cast<float>(r[0]), static_cast<float>(r[1]), static_cast<float>(r[2]),
@@ -535,9 +506,7 @@ void to_gpu_into(const FramePlan& plan, std::span<const uint8_t> used_bones, Gpu
       p.capsule_move[2 * c + 1] = f4(st.capsules[c].m1, 0.0);
     }
     out.steps.push_back(p);
-    const bool skip = st.skin.size() > 1 && used_bones.size() == st.skin.size();
     for (size_t b = 0; b < st.skin.size(); ++b, v += sim::kSkinVec4PerBone) {
-      if (skip && used_bones[b] == 0) continue;
       const SkinTransform& t = st.skin[b];
       for (size_t r = 0; r < 3; ++r) v[r] = row(t.rows[r]);
       v[3] = f4(t.rotation);

@@ -10,8 +10,8 @@ namespace tressvk::reference {
 
 Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
                      const TvkSimSettings& settings, const PlannerLimits& limits)
-    : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.bone_count, limits) {
-  planner_.set_used_bones(used_bones(rest_));  // as the plugin's instances (exact for every bone a strand reads)
+    : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.asset_bone_count, limits) {
+  planner_.set_bone_source(rest_.bone_source);  // the bones the strands read, as the plugin's instances plan them
   asset_inv_mass_ = rest_.inv_mass;
   set_params(group_params);
   switch (resolve_model(settings.model)) {
@@ -131,7 +131,7 @@ void Simulator::simulate(const FramePlan& plan) {
 Vec3 Simulator::skinned_rest(const Substep& st, size_t i) const {
   const uint32_t n = rest_.vertices_per_strand;
   const Vec3 x = rest_.rest_pos[i];
-  if (st.skin.size() > 1) {
+  if (st.skinned) {
     const uint32_t g = static_cast<uint32_t>(i / n);
     std::array<std::array<double, 4>, 3> r{};
     for (size_t k = 0; k < 4; ++k) {
@@ -150,7 +150,7 @@ Vec3 Simulator::skinned_rest(const Substep& st, size_t i) const {
 }
 
 Quat Simulator::skin_rotation(const Substep& st, uint32_t g) const {
-  if (st.skin.size() > 1) {
+  if (st.skinned) {
     const Quat q0 = st.skin[rest_.bone_index[g][0]].rotation;
     Quat q{0, 0, 0, 0};
     for (size_t k = 0; k < 4; ++k) {
@@ -169,7 +169,7 @@ namespace {
 // Blends one per-bone rotation (`member` of each bone's SkinTransform) with the strand's bone weights; the GLSL
 // twin is blend_bone_delta in common.glsl.
 Quat blend_bone_delta(const Substep& st, const ModelRest& rest, uint32_t g, Quat SkinTransform::*member) {
-  if (st.skin.size() > 1) {
+  if (st.skinned) {
     Quat q{0, 0, 0, 0};
     for (size_t k = 0; k < 4; ++k) {
       const double w = rest.bone_weight[g][k];

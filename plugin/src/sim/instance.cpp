@@ -64,7 +64,7 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
   std::memset(inst.counters.mapped, 0, counter_bytes);
   inst.awake_probe.assign(ctx.frames_in_flight, 0);
 
-  // The ring: per frame in flight, [group params][step params x max steps][skin x max steps x bones].
+  // The ring: per frame in flight, [group params][step params x max steps][skin x max steps x the bones the strands read].
   const VkDeviceSize align = std::max<VkDeviceSize>(ctx.device_properties.limits.minStorageBufferOffsetAlignment, 16);
   const uint32_t groups = static_cast<uint32_t>(inst.params.size());
   const uint32_t bones = std::max<uint32_t>(1, rest.bone_count);
@@ -162,8 +162,8 @@ TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInf
     inst->params.assign(std::max<size_t>(1, info->asset->cpu.groups.size()), params);
     // The planner checks the settings and names the field at fault (e.g. time.step_rate); it throws.
     inst->planner = std::make_unique<tressvk::model::FramePlanner>(settings, info->asset->cpu.origin,
-                                                                        info->asset->rest.bone_count);
-    inst->planner->set_used_bones(tressvk::model::used_bones(info->asset->rest));
+                                                                        info->asset->rest.asset_bone_count);
+    inst->planner->set_bone_source(info->asset->rest.bone_source);
     if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) return r;
     // Handed to the host: only now does the instance count as a user of the asset.
     ++info->asset->users;
@@ -223,7 +223,7 @@ TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
   // Every host number is checked here, so a NaN or infinity never reaches the GPU (where it would reset every strand
   // every step and freeze the groom) and the host learns which field was wrong.
   try {
-    tressvk::model::validate_frame(*frame, instance->asset->rest.bone_count);
+    tressvk::model::validate_frame(*frame, instance->asset->rest.asset_bone_count);
   } catch (const std::exception& e) {
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_frame: %s", e.what());
   }
@@ -245,7 +245,7 @@ TvkResult tressvk_prewarm_instance(TvkInstance instance, const TvkSimFrame* fram
   return tressvk::guarded(ctx, "tressvk_prewarm_instance", [&]() -> TvkResult {
     if (frame) {
       try {
-        tressvk::model::validate_frame(*frame, instance->asset->rest.bone_count);
+        tressvk::model::validate_frame(*frame, instance->asset->rest.asset_bone_count);
       } catch (const std::exception& e) {
         return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_prewarm_instance: %s", e.what());
       }

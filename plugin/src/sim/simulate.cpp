@@ -300,7 +300,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   work.plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
   // One conversion buffer for every instance in turn, so that it stays in the cache. (A buffer per instance kept
   // between frames read 30 % slower for 64 skinned Ratboys on one H100 host, within noise on another.)
-  model::to_gpu_into(work.plan, inst.planner->used_bones(), ctx.gpu_frame_scratch);
+  model::to_gpu_into(work.plan, ctx.gpu_frame_scratch);
   const model::GpuFrame& gpu = ctx.gpu_frame_scratch;
   work.steps = static_cast<uint32_t>(work.plan.steps.size());
   work.skin_stride = gpu.skin_stride;

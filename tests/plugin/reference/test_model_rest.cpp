@@ -135,3 +135,40 @@ TEST_CASE("model: strands with sub-micrometre segments are respaced evenly on lo
     }
   }
 }
+
+// The bones the strands read, compacted (ModelRest::bone_source): the planner works out and the GPU holds only those,
+// the guides' indices name them, and a zero weight's index is the guide's first weighted bone (the skinning blend's
+// quaternion hemisphere is its first entry's, which must be a bone the guide reads).
+TEST_CASE("model: the bones no strand reads are left out of the runtime's bone list", "[reference][model]") {
+  tressvk::asset::HairAsset a = groom("straight", 4);
+  a.bone_names = {"root", "spine", "neck", "head", "jaw", "ear"};
+  a.bone_weights.assign(4, {});
+  a.bone_weights[0].bone = {3, 0, 0, 0};
+  a.bone_weights[0].weight = {1.0f, 0.0f, 0.0f, 0.0f};
+  a.bone_weights[1].bone = {5, 3, 0, 0};
+  a.bone_weights[1].weight = {0.75f, 0.25f, 0.0f, 0.0f};
+  a.bone_weights[2].bone = {0, 2, 0, 0};
+  a.bone_weights[2].weight = {0.0f, 1.0f, 0.0f, 0.0f};  // a zero weight first
+  a.bone_weights[3].bone = {3, 3, 3, 3};
+  a.bone_weights[3].weight = {0.5f, 0.5f, 0.0f, 0.0f};
+  const model::ModelRest m = model::build_model_rest(a);
+  CHECK(m.asset_bone_count == 6);
+  CHECK(m.bone_count == 3);
+  CHECK(m.bone_source == std::vector<uint32_t>{2, 3, 5});
+  using Index = std::array<uint32_t, 4>;
+  CHECK(m.bone_index[0] == Index{1, 1, 1, 1});
+  CHECK(m.bone_index[1] == Index{2, 1, 2, 2});
+  CHECK(m.bone_index[2] == Index{0, 0, 0, 0});
+  CHECK(m.bone_index[3] == Index{1, 1, 1, 1});
+  CHECK(m.bone_weight[1][0] == 0.75);
+  const model::GpuStatic s = model::build_gpu_static(m);
+  REQUIRE(s.bone_indices.size() == 4);
+  for (uint32_t g = 0; g < 4; ++g)
+    for (uint32_t k = 0; k < 4; ++k) CHECK(s.bone_indices[g][k] == m.bone_index[g][k]);
+
+  a.bone_weights.clear();  // no bones: rigid only
+  const model::ModelRest rigid = model::build_model_rest(a);
+  CHECK(rigid.bone_count == 0);
+  CHECK(rigid.asset_bone_count == 0);
+  CHECK(rigid.bone_source.empty());
+}

@@ -227,18 +227,22 @@ TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][plan
   CHECK(g.local_stiffness == Catch::Approx(0.45));
 }
 
-// A skinned character's bones that no strand reads (FramePlanner::set_used_bones) get the instance's rigid transform,
-// worked out once a step instead of once a bone: every bone a strand reads keeps its data bit for bit, through
-// interpolated steps, a teleport, a hitch and a frame without bones, and to_gpu leaves the others zero. The frames
+// A skinned character's planner works out only the bones its strands read (FramePlanner::set_bone_source, from
+// ModelRest::bone_source): each of them keeps, bit for bit, what a planner of every bone gives it, through
+// interpolated steps, a teleport, a hitch and a frame without bones, on the planner and in the GPU data. The frames
 // convert into one reused GpuFrame (to_gpu_into), as the plugin's do: reused storage must not change a bit either.
-TEST_CASE("planner: bones no strand reads cost nothing and change nothing a strand reads", "[reference][planner]") {
+TEST_CASE("planner: a planner of the bones read gives each of them what a planner of every bone does",
+          "[reference][planner]") {
   constexpr uint32_t kBones = 7;
-  std::vector<uint8_t> used(kBones, 0);
-  used[1] = used[4] = used[6] = 1;
+  const std::vector<uint32_t> source = {1, 4, 6};  // bone 0 unread: the first compact bone is not the asset's first
   FramePlanner all(settings_120hz(), {0.01, 1.6, -0.02}, kBones);
   FramePlanner some(settings_120hz(), {0.01, 1.6, -0.02}, kBones);
-  some.set_used_bones(used);
-  CHECK_THROWS(some.set_used_bones(std::vector<uint8_t>(kBones + 1, 1)));
+  some.set_bone_source(source);
+  CHECK(all.skin_bones() == kBones);
+  CHECK(some.skin_bones() == source.size());
+  CHECK_THROWS(some.set_bone_source({1, 7}));  // no bone 7
+  CHECK_THROWS(some.set_bone_source({4, 1}));  // not increasing
+  CHECK(some.skin_bones() == source.size());   // a refused source leaves the planner as it was
   std::vector<TvkBoneMatrix> bones(kBones, TvkBoneMatrix TVK_BONE_MATRIX_IDENTITY_INIT);
   uint32_t compared = 0;
   GpuFrame gb;  // reused frame after frame
@@ -258,7 +262,8 @@ TEST_CASE("planner: bones no strand reads cost nothing and change nothing a stra
       bones[b].rows[2][2] = static_cast<float>(c);
       bones[b].rows[1][3] = static_cast<float>(0.01 * b * std::sin(0.2 * i));
     }
-    if (i != 30) {  // frame 30 runs the rigid transform alone
+    const bool skinned = i != 30;  // frame 30 runs the rigid transform alone
+    if (skinned) {
       f.bones = bones.data();
       f.bone_count = kBones;
     }
@@ -266,29 +271,33 @@ TEST_CASE("planner: bones no strand reads cost nothing and change nothing a stra
     const FramePlan b = some.plan(f);
     REQUIRE(a.steps.size() == b.steps.size());
     const GpuFrame ga = to_gpu(a);
-    to_gpu_into(b, used, gb);
-    REQUIRE(ga.skin.size() == gb.skin.size());
+    to_gpu_into(b, gb);
     for (size_t k = 0; k < a.steps.size(); ++k) {
-      REQUIRE(a.steps[k].skin.size() == b.steps[k].skin.size());
-      for (size_t t = 0; t < a.steps[k].skin.size(); ++t) {
-        const bool reads = a.steps[k].skin.size() == 1 || used[t] != 0;
-        const SkinTransform& x = a.steps[k].skin[t];
+      CHECK(a.steps[k].skinned == skinned);
+      CHECK(b.steps[k].skinned == skinned);
+      REQUIRE(a.steps[k].skin.size() == (skinned ? kBones : 1u));
+      REQUIRE(b.steps[k].skin.size() == (skinned ? source.size() : 1u));
+      for (size_t t = 0; t < b.steps[k].skin.size(); ++t) {
+        const size_t from = skinned ? source[t] : 0;
+        const SkinTransform& x = a.steps[k].skin[from];
         const SkinTransform& y = b.steps[k].skin[t];
-        const size_t at = (k * a.steps[k].skin.size() + t) * tressvk::sim::kSkinVec4PerBone;
-        if (reads) {
-          CHECK(x.rows == y.rows);
-          CHECK(x.move_rows == y.move_rows);
-          CHECK((x.rotation.x == y.rotation.x && x.rotation.w == y.rotation.w));
-          CHECK((x.delta.x == y.delta.x && x.delta.y == y.delta.y && x.delta.w == y.delta.w));
-          CHECK((x.delta_before.y == y.delta_before.y && x.delta_before.w == y.delta_before.w));
-          for (uint32_t v = 0; v < tressvk::sim::kSkinVec4PerBone; ++v) CHECK(ga.skin[at + v] == gb.skin[at + v]);
-          ++compared;
-        } else {
-          for (uint32_t v = 0; v < tressvk::sim::kSkinVec4PerBone; ++v)
-            CHECK(gb.skin[at + v] == tressvk::sim::Vec4{0.0f, 0.0f, 0.0f, 0.0f});
+        CHECK(x.rows == y.rows);
+        // The rigid frame's map change is measured from the previous step's first skin entry (bone 0 against bone 1
+        // here): a switch between bones and the rigid transform has no per-bone history to compare with.
+        if (skinned) CHECK(x.move_rows == y.move_rows);
+        CHECK((x.rotation.x == y.rotation.x && x.rotation.w == y.rotation.w));
+        CHECK((x.delta.x == y.delta.x && x.delta.y == y.delta.y && x.delta.w == y.delta.w));
+        CHECK((x.delta_before.y == y.delta_before.y && x.delta_before.w == y.delta_before.w));
+        const size_t at_a = (k * a.steps[k].skin.size() + from) * tressvk::sim::kSkinVec4PerBone;
+        const size_t at_b = (k * b.steps[k].skin.size() + t) * tressvk::sim::kSkinVec4PerBone;
+        for (uint32_t v = 0; v < tressvk::sim::kSkinVec4PerBone; ++v) {
+          if (skinned || (v < 6)) CHECK(ga.skin[at_a + v] == gb.skin[at_b + v]);  // 6..8: the map change
         }
+        ++compared;
       }
     }
+    CHECK(gb.skin.size() == b.steps.size() * (skinned ? source.size() : 1u) * tressvk::sim::kSkinVec4PerBone);
+    CHECK(gb.skin_stride == (skinned ? source.size() : 1u) * tressvk::sim::kSkinVec4PerBone);
     CHECK(ga.steps.size() == gb.steps.size());
     for (size_t k = 0; k < ga.steps.size() && k < gb.steps.size(); ++k)
       CHECK(std::memcmp(&ga.steps[k], &gb.steps[k], sizeof(ga.steps[k])) == 0);

@@ -58,7 +58,14 @@ struct ModelRest {
   uint32_t follow_per_guide = 0;   // K
   double asset_tip_separation = 0;
   std::array<double, 3> asset_origin{};
-  uint32_t bone_count = 0;         // asset bones (0 = rigid only)
+  // The bones the strands read, compacted: bone_count of them (0 = rigid only), bone_source[i] the asset bone that
+  // compact bone i is, in the asset's order; bone_index names compact bones. A host frame still carries every one of
+  // the asset's asset_bone_count bones; the planner picks the compact ones (FramePlanner::set_bone_source), so every
+  // per-bone cost of a frame (planning in double, the upload, the ring) scales with the bones read: Ratboy's mohawk
+  // reads 21 of its 105.
+  uint32_t bone_count = 0;
+  uint32_t asset_bone_count = 0;   // the asset's bones (0 when it has no bone weights)
+  std::vector<uint32_t> bone_source;
 
   // Per guide vertex (G*N).
   std::vector<Vec3> rest_pos;      // asset space relative to the asset origin (the float values, widened)
@@ -71,6 +78,8 @@ struct ModelRest {
   std::vector<Quat> root_frame;
   std::vector<double> strand_length;
   std::vector<uint32_t> group;
+  // Compact bone indices (a zero weight's index is the strand's first weighted bone, so that index 0 always names
+  // a bone the strand reads: the blend's quaternion hemisphere is the first entry's).
   std::vector<std::array<uint32_t, 4>> bone_index;
   std::vector<std::array<double, 4>> bone_weight;
   // Per follow (G*K).
@@ -111,8 +120,5 @@ inline double default_rigid_below(double median_length) { return kRigidStrandRel
 inline bool rigid_by_rule(double strand_length, double rigid_below) {
   return static_cast<float>(strand_length) < static_cast<float>(rigid_below);
 }
-
-// The bones some guide reads (a nonzero weight), one entry a bone of the asset (FramePlanner::set_used_bones).
-std::vector<uint8_t> used_bones(const ModelRest& rest);
 
 }  // namespace tressvk::model

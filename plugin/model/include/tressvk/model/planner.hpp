@@ -65,12 +65,13 @@ struct Substep {
   bool wind = false;
   uint32_t capsule_count = 0;
   std::array<CapsuleSim, TVK_MAX_CAPSULES> capsules{};
-  std::vector<SkinTransform> skin;  // one per asset bone, or one (rigid) when the frame gave no bones
+  bool skinned = false;             // the frame gave bones: skin holds one transform per bone the strands read
+  std::vector<SkinTransform> skin;  // one per bone the strands read (set_bone_source), or one (rigid) without bones
 };
 
 struct FramePlan {
   std::vector<Substep> steps;        // may be empty (a frame shorter than the time left to the next step)
-  bool skinned = false;              // skin holds one transform per bone (else one rigid transform)
+  bool skinned = false;              // skin holds one transform per bone read (else one rigid transform)
   std::array<double, 3> sim_origin{};// world position of the simulation origin after the last step (double)
   uint32_t dropped_steps = 0;        // whole steps dropped by the cap in this frame
 };
@@ -93,11 +94,13 @@ class FramePlanner {
   // The same for a frame validate_frame has accepted (the plugin checks every frame at tressvk_set_frame).
   FramePlan plan_validated(const TvkSimFrame& frame);
 
-  // The bones some strand reads (a nonzero bone weight; empty: every bone). A bone no strand reads gets the
-  // instance's rigid transform instead of its own, worked out once a step: Ratboy's mohawk reads 21 of its 105.
-  // Throws std::invalid_argument when the size is not the asset's bone count.
-  void set_used_bones(std::vector<uint8_t> used);
-  std::span<const uint8_t> used_bones() const { return used_bones_; }
+  // The asset bones a plan's skin entries are, in order (ModelRest::bone_source: the bones some strand reads; empty,
+  // the default: every bone of the asset). The host's frames still carry every bone; the planner validates them all
+  // and works out only these, so a skinned character's CPU time scales with the bones its strands read (Ratboy's
+  // mohawk: 21 of 105). Throws std::invalid_argument unless the entries are increasing asset bone indices.
+  void set_bone_source(std::vector<uint32_t> source);
+  // The skin entries of a skinned frame's steps.
+  size_t skin_bones() const { return bone_source_.empty() ? bone_count_ : bone_source_.size(); }
 
   double step_length() const { return h_; }
   uint64_t steps_taken() const { return step_counter_; }
@@ -112,10 +115,8 @@ class FramePlanner {
   PlannerLimits limits_;
   std::array<double, 3> asset_origin_;
   uint32_t bone_count_;
-  std::vector<uint8_t> used_bones_;  // set_used_bones; empty: every bone
-  // Bone 0 is worked out whatever reads it: a frame that switches from bones to the rigid transform compares its map
-  // with the previous step's first one (plan).
-  bool bone_used(size_t b) const { return b == 0 || used_bones_.empty() || used_bones_[b] != 0; }
+  std::vector<uint32_t> bone_source_;  // set_bone_source; empty: every bone
+  uint32_t source_bone(size_t i) const { return bone_source_.empty() ? static_cast<uint32_t>(i) : bone_source_[i]; }
   double h_ = 0;
   double accumulator_ = 0;   // in steps
   uint64_t step_counter_ = 0;
@@ -173,11 +174,9 @@ struct GpuFrame {
   std::vector<sim::Vec4> skin;         // steps * bones_per_step * kSkinVec4PerBone (substep s at s * skin_stride)
   uint32_t skin_stride = 0;            // vec4 per substep
 };
-// used_bones (FramePlanner::set_used_bones; empty: every bone): the bones no strand reads are left zero in a
-// skinned frame's skin data (no shader reads them).
-GpuFrame to_gpu(const FramePlan& plan, std::span<const uint8_t> used_bones = {});
+GpuFrame to_gpu(const FramePlan& plan);
 // The same into `out`, whose storage it reuses.
-void to_gpu_into(const FramePlan& plan, std::span<const uint8_t> used_bones, GpuFrame& out);
+void to_gpu_into(const FramePlan& plan, GpuFrame& out);
 sim::GroupParams to_gpu(const GroupStep& group);
 
 // ---- The strand models (TvkSimSettings::model; the reference's SimModel) -------------------------------------------
