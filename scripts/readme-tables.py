@@ -5,12 +5,15 @@
 
 OUTDIR/sim/models-{ratboy,curly1M,curly4M}-default-{240,60}.json come from `tressvk-bench perf` (scripts/gpu-perf.sh,
 MODELS=1 PATHS=default); OUTDIR/render/{ratboy4,100k}-compute-1080p.json from `tressvk-bench render`
-(scripts/gpu-render-bench.sh); OUTDIR/host/ratboy-{1,64}[-bones].json from `tressvk-bench perf [--bones]`. Prints the
-three tables as the README has them, and the device they ran on. A row whose file is missing says so instead of a
-number.
+(scripts/gpu-render-bench.sh); OUTDIR/host/ratboy-{1,64}[-bones]-r<k>.json (or one ratboy-{1,64}[-bones].json) from
+`tressvk-bench perf [--bones]`, whose CPU times are the median of the rounds (a virtual machine's CPU time wanders by
+up to 2x between runs). Prints the three tables as the README has them, and the device they ran on. A row whose file
+is missing says so instead of a number.
 """
+import glob
 import json
 import os
+import statistics
 import sys
 
 
@@ -63,18 +66,30 @@ def main():
         ms = r["gpu_ms_shadow"] + r["gpu_ms_shading"]
         print(f"| {label.format(n=r['strands_drawn'])} | {ms:.2f} | {r['error_mean']:.2f} / {r['error_p99']:.2f} |")
     print()
-    print("| host CPU per frame (set_frame, new_frame, cmd_simulate), Ratboy + 2 follows, 240 Hz, `shake` "
-          "| 1 instance: CPU ms (GPU ms) | 64 instances in one call: CPU ms (GPU ms) |")
+    host = os.path.join(out, "host")
+    rounds = {}
+    for n in (1, 64):
+        for suffix in ("", "-bones"):
+            paths = sorted(glob.glob(os.path.join(host, f"ratboy-{n}{suffix}-r*.json")))
+            paths = paths or [os.path.join(host, f"ratboy-{n}{suffix}.json")]
+            rounds[(n, suffix)] = [r for r in (load(p) for p in paths) if r is not None]
+    count = max((len(v) for v in rounds.values()), default=0)
+    median_of = f", median of {count} runs" if count > 1 else ""
+    print("| host CPU per frame (set_frame, new_frame, cmd_simulate), Ratboy + 2 follows, 240 Hz, `shake`"
+          f"{median_of} | 1 instance: CPU ms (GPU ms) | 64 instances in one call: CPU ms (GPU ms) |")
     print("|---|---|---|")
     for suffix, label in (("", "moved by its transform"), ("-bones", "its 105 bones driven (`--bones`)")):
-        runs = [load(os.path.join(out, "host", f"ratboy-{n}{suffix}.json")) for n in (1, 64)]
         cells = []
-        for r in runs:
-            if r is None:
+        for n in (1, 64):
+            runs = rounds[(n, suffix)]
+            if not runs:
                 cells.append("missing")
                 continue
-            devices.add(r["device"])
-            cells.append(f"{r['host_ms_per_frame']:.3f} ({r['gpu_ms_per_frame']:.3f})")
+            for r in runs:
+                devices.add(r["device"])
+            cpu = statistics.median(r["host_ms_per_frame"] for r in runs)
+            gpu = statistics.median(r["gpu_ms_per_frame"] for r in runs)
+            cells.append(f"{cpu:.3f} ({gpu:.3f})")
         print(f"| {label} | {cells[0]} | {cells[1]} |")
     print()
     for d in sorted(devices):
