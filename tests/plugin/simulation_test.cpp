@@ -21,6 +21,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <thread>
 
 using namespace tressvk;
 
@@ -352,6 +353,91 @@ TEST_CASE("a crowd takes the one-thread kernel at any step rate and keeps every 
     CHECK((has_pass_containing(crowd_passes, "frame") && !has_pass_containing(crowd_passes, "runs")));
     for (const test::GpuInstance* m : members) CHECK(same_bits(m->state(), alone.state()));
   }
+}
+
+// A host's job system plans each instance's frame on its own worker (tressvk_set_frame and tressvk_plan_frame of
+// distinct instances at once, tressvk.h "Thread safety"); tressvk_cmd_simulate then only copies the plans. Planned or
+// not, every instance ends every frame bit for bit where the same frames planned by tressvk_cmd_simulate put it,
+// through collisions, a teleport and a frame whose settings change after it was planned. A planned instance refuses
+// a second set_frame until it is simulated, and a second plan is planning once.
+TEST_CASE("frames planned on worker threads simulate bit for bit as frames planned by the simulate call",
+          "[plugin][simulation]") {
+  const asset::HairAsset hair = test::small_groom("curly", 64);
+  constexpr size_t kInstances = 6;
+  test::PluginContext ctx = test::create_plugin_context();
+  test::AssetHandle owned(test::load_asset(ctx.get(), hair));
+  const std::vector<TvkSimParams> params = default_params(hair);
+  TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
+  std::vector<std::unique_ptr<test::GpuInstance>> owned_instances;
+  std::vector<test::GpuInstance*> serial, threaded;
+  for (size_t i = 0; i < 2 * kInstances; ++i) {
+    owned_instances.push_back(std::make_unique<test::GpuInstance>(ctx.get(), owned.get(), params, settings));
+    (i < kInstances ? serial : threaded).push_back(owned_instances.back().get());
+  }
+  const reference::SceneGeometry geometry =
+      reference::scene_geometry(reference::Simulator(hair, params, settings).rest());
+  for (uint32_t f = 0; f < 6; ++f) {
+    INFO("frame " << f);
+    std::vector<TvkSimFrame> frames;
+    for (size_t i = 0; i < kInstances; ++i) {
+      TvkSimFrame frame = reference::scene_frame("run", f, geometry);  // capsules on a moving head
+      frame.transform.translation[0] += 0.5f * static_cast<float>(i);  // each instance its own motion
+      frame.transform.translation[2] += 0.01f * static_cast<float>(i * f);
+      frame.teleport = f == 3 && i % 2 == 0 ? 1 : 0;
+      frames.push_back(frame);
+    }
+    test::run_frame_batched(ctx.get(), serial, frames);
+
+    std::vector<TvkResult> set(kInstances, TVK_ERROR_INVALID_ARGUMENT), plan(kInstances, TVK_ERROR_INVALID_ARGUMENT);
+    {
+      std::vector<std::thread> workers;
+      for (size_t i = 0; i < kInstances; ++i)
+        workers.emplace_back([&, i] {
+          set[i] = tressvk_set_frame(threaded[i]->handle(), &frames[i]);
+          plan[i] = tressvk_plan_frame(threaded[i]->handle());
+        });
+      for (std::thread& w : workers) w.join();
+    }
+    for (size_t i = 0; i < kInstances; ++i) {
+      CHECK(set[i] == TVK_SUCCESS);
+      CHECK(plan[i] == TVK_SUCCESS);
+    }
+    INFO(tressvk_last_error(ctx.get()));
+    if (f == 2) {
+      CHECK(tressvk_set_frame(threaded[0]->handle(), &frames[0]) == TVK_ERROR_INVALID_ARGUMENT);
+      CHECK(std::string(tressvk_last_error(ctx.get())).find("planned") != std::string::npos);
+      CHECK(tressvk_plan_frame(threaded[0]->handle()) == TVK_SUCCESS);  // planned already: nothing more
+    }
+    if (f == 4) {  // settings set after planning apply from the next frame, for both
+      TvkSimSettings slower = settings;
+      slower.time.step_rate = 120.0f;
+      for (test::GpuInstance* m : threaded) REQUIRE(tressvk_set_sim_settings(m->handle(), &slower) == TVK_SUCCESS);
+      for (test::GpuInstance* m : serial) REQUIRE(tressvk_set_sim_settings(m->handle(), &slower) == TVK_SUCCESS);
+    }
+    REQUIRE(tressvk_new_frame(ctx.get()) == TVK_SUCCESS);
+    std::vector<TvkInstance> handles;
+    for (test::GpuInstance* m : threaded) handles.push_back(m->handle());
+    TvkResult r = TVK_ERROR_INVALID_ARGUMENT;
+    test::run_commands([&](VkCommandBuffer cmd) {
+      TvkSimulateInfo info{};
+      info.struct_size = sizeof(info);
+      info.instance_count = static_cast<uint32_t>(handles.size());
+      info.instances = handles.data();
+      r = tressvk_cmd_simulate(ctx.get(), cmd, &info);
+    });
+    REQUIRE(r == TVK_SUCCESS);
+    for (size_t i = 0; i < kInstances; ++i) {
+      threaded[i]->read_state();
+      INFO("instance " << i);
+      CHECK(threaded[i]->stats().steps_last_frame == serial[i]->stats().steps_last_frame);
+      const test::GpuState& a = serial[i]->state();
+      const test::GpuState& b = threaded[i]->state();
+      REQUIRE(a.pos.size() == b.pos.size());
+      CHECK(std::memcmp(a.pos.data(), b.pos.data(), a.pos.size() * sizeof(a.pos[0])) == 0);
+      CHECK(std::memcmp(a.prev.data(), b.prev.data(), a.prev.size() * sizeof(a.prev[0])) == 0);
+    }
+  }
+  CHECK(serial.front()->stats().steps > 0);
 }
 
 TEST_CASE("passes are recorded only for what the scene uses", "[plugin][simulation]") {

@@ -4,9 +4,13 @@
 #include <tressvk/host/glue.hpp>
 
 #include <algorithm>
+#include <barrier>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <string>
+#include <thread>
 
 namespace tressvk::bench {
 
@@ -38,13 +42,76 @@ bool settled(const std::vector<double>& ms, double window_ms, double tolerance) 
   return std::abs(a - b) <= tolerance * a;
 }
 
+// Calls tressvk_set_frame and tressvk_plan_frame for every instance, split over `threads` threads (the caller and
+// threads - 1 workers that wait between frames), as a host's job system would.
+class PlanThreads {
+ public:
+  PlanThreads(std::span<const TvkInstance> instances, uint32_t threads)
+      : instances_(instances), threads_(std::max(1u, threads)), sync_(static_cast<std::ptrdiff_t>(threads_)) {
+    for (uint32_t t = 1; t < threads_; ++t) workers_.emplace_back([this, t] {
+      for (;;) {
+        sync_.arrive_and_wait();  // a frame to plan, or the end
+        if (stop_) return;
+        work(t);
+        sync_.arrive_and_wait();  // planned
+      }
+    });
+  }
+  ~PlanThreads() {
+    stop_ = true;
+    sync_.arrive_and_wait();
+    for (std::thread& w : workers_) w.join();
+  }
+  PlanThreads(const PlanThreads&) = delete;
+  PlanThreads& operator=(const PlanThreads&) = delete;
+
+  // Every instance gets `frame`; throws engine::Error naming the first call that failed.
+  void set_and_plan(TvkContext ctx, const TvkSimFrame& frame) {
+    frame_ = &frame;
+    failed_.assign(threads_, TVK_SUCCESS);
+    sync_.arrive_and_wait();
+    work(0);
+    sync_.arrive_and_wait();
+    for (uint32_t t = 0; t < threads_; ++t)
+      if (failed_[t] != TVK_SUCCESS) host::check_tvk(failed_[t], ctx, failed_call_[t].c_str());
+  }
+
+ private:
+  void work(uint32_t t) {
+    const size_t n = instances_.size();
+    for (size_t i = n * t / threads_; i < n * (t + 1) / threads_; ++i) {
+      TvkResult r = tressvk_set_frame(instances_[i], frame_);
+      if (r != TVK_SUCCESS) {
+        failed_[t] = r;
+        failed_call_[t] = "tressvk_set_frame";
+        return;
+      }
+      if ((r = tressvk_plan_frame(instances_[i])) != TVK_SUCCESS) {
+        failed_[t] = r;
+        failed_call_[t] = "tressvk_plan_frame";
+        return;
+      }
+    }
+  }
+  std::span<const TvkInstance> instances_;
+  uint32_t threads_;
+  std::barrier<> sync_;
+  std::vector<std::thread> workers_;
+  const TvkSimFrame* frame_ = nullptr;
+  std::vector<TvkResult> failed_ = std::vector<TvkResult>(threads_, TVK_SUCCESS);
+  std::vector<std::string> failed_call_ = std::vector<std::string>(threads_);
+  bool stop_ = false;  // written before the barrier the workers wait on, read after it
+};
+
 }  // namespace
 
 FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<const TvkInstance> instances,
                        model::FramePlanner& planner,
                        const std::function<TvkSimFrame(uint32_t)>& frame_of, const WarmUp& warmup, uint32_t frames,
-                       uint32_t in_flight) {
+                       uint32_t in_flight, uint32_t plan_threads) {
   FrameTimes out;
+  std::unique_ptr<PlanThreads> plan_pool;
+  if (plan_threads > 0) plan_pool = std::make_unique<PlanThreads>(instances, plan_threads);
   uint64_t steps_total = 0, frames_total = 0;
   uint32_t first_timed = UINT32_MAX;  // known once the warm-up ends
   std::vector<double> warm_ms;        // the warm-up frames' GPU times, as they complete
@@ -62,7 +129,11 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
     steps_total += planner.plan(frame).steps.size();
     ++frames_total;
     const auto h0 = std::chrono::steady_clock::now();
-    for (TvkInstance inst : instances) host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+    if (plan_pool) {
+      plan_pool->set_and_plan(ctx, frame);
+    } else {
+      for (TvkInstance inst : instances) host::check_tvk(tressvk_set_frame(inst, &frame), ctx, "tressvk_set_frame");
+    }
     host::check_tvk(tressvk_new_frame(ctx), ctx, "tressvk_new_frame");
     double host = since(h0);
     const engine::FrameLoop::Frame& fr = loop.begin();

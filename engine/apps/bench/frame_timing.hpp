@@ -26,9 +26,9 @@ struct WarmUp {
 struct FrameTimes {
   std::vector<double> frame_ms;  // per timed frame, the frame's own timestamps
   std::vector<double> sim_ms;    // per timed frame, the sum of the plugin's pass timings (when it was given timestamps)
-  std::vector<double> host_ms;   // per timed frame, CPU time in the plugin's per-frame calls: tressvk_set_frame for
-                                 // every instance, tressvk_new_frame and tressvk_cmd_simulate (the frame loop's own
-                                 // waits for a free slot left out)
+  std::vector<double> host_ms;   // per timed frame, wall time of the plugin's per-frame calls: tressvk_set_frame (and
+                                 // with plan threads tressvk_plan_frame) for every instance, tressvk_new_frame and
+                                 // tressvk_cmd_simulate (the frame loop's own waits for a free slot left out)
   uint32_t dispatches = 0;       // most dispatches in a frame (tressvk_get_recorded_dispatches)
   double steps_per_frame = 0;    // over every recorded frame
   double wall_ms = 0;            // CPU wall time of the timed frames, all of them
@@ -40,9 +40,11 @@ struct FrameTimes {
 // Records the warm-up frames and then `frames` timed ones, frame_of(0, 1, ...), into one frame loop of `in_flight`
 // frames (the context must have been created with that many; the GPU is never left idle between warm-up and timed
 // frames), waits for the last. Every instance gets the same frame, all of them in one tressvk_cmd_simulate. `planner`
-// is kept in step with the plugin's to count the steps. Throws engine::Error when a call fails.
+// is kept in step with the plugin's to count the steps. plan_threads > 0: the instances' tressvk_set_frame and
+// tressvk_plan_frame run on that many threads (the calling one among them), as a job system's workers would call them;
+// 0: tressvk_cmd_simulate plans every instance. Throws engine::Error when a call fails.
 FrameTimes time_frames(const engine::Device& device, TvkContext context, std::span<const TvkInstance> instances,
                        model::FramePlanner& planner, const std::function<TvkSimFrame(uint32_t)>& frame_of,
-                       const WarmUp& warmup, uint32_t frames, uint32_t in_flight);
+                       const WarmUp& warmup, uint32_t frames, uint32_t in_flight, uint32_t plan_threads = 0);
 
 }  // namespace tressvk::bench

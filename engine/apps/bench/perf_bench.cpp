@@ -150,6 +150,12 @@ void add_perf_command(CLI::App& app, PerfCommand& cmd) {
                    "is the first one's")
       ->capture_default_str()
       ->check(CLI::Range(1, 4096));
+  perf->add_option("--plan-threads", cmd.plan_threads,
+                   "plan the instances' frames ahead of tressvk_cmd_simulate with tressvk_plan_frame, their set_frame and "
+                   "plan_frame calls split over this many threads (the bench's own among them), as a job system would; "
+                   "0 = tressvk_cmd_simulate plans them")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 256));
   perf->add_option("--draw-strands", cmd.draw_strands,
                    "rendered strands (guides, then follow layers) whose follow hairs are simulated, as a host drawing "
                    "that many by LOD sets (tressvk_set_draw_strands); 0 = all. The step error covers those strands")
@@ -262,7 +268,7 @@ int execute_perf_command(const PerfCommand& given) {
       return frame;
     };
     const FrameTimes times = time_frames(dev, ctx, crowd, ref.planner(), frame_of, warm, cmd.frames,
-                                         cmd.frames_in_flight);
+                                         cmd.frames_in_flight, cmd.plan_threads);
     const uint32_t total = times.warmup_frames + cmd.frames;
     const std::vector<double>& frame_ms = times.frame_ms;
     const std::vector<double>& sim_ms = times.sim_ms;
@@ -334,6 +340,7 @@ int execute_perf_command(const PerfCommand& given) {
         {"follow_per_guide", groom.follow_per_guide},
         {"guide_vertices", guide_vertices},
         {"instances", cmd.instances},
+        {"plan_threads", cmd.plan_threads},
         {"bones", cmd.bones ? groom.bone_names.size() : 0},
         {"step_rate_hz", cmd.settings.time.step_rate},
         {"sleep_below", cmd.settings.sleep_below},

@@ -30,6 +30,7 @@ struct PerfCommand {
   bool table_row = false;
   bool pass_timings = false;  // the plugin's per-pass timestamps (they add to the frame time)
   bool bones = false;  // drive the asset's bones every frame (reference::rocking_bones), as a skinned character does
+  uint32_t plan_threads = 0;  // > 0: set_frame and tressvk_plan_frame on that many threads (time_frames)
 };
 
 void add_perf_command(CLI::App& app, PerfCommand& cmd);

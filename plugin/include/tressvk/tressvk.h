@@ -15,7 +15,11 @@
  * - A failed create or load call leaves nothing behind: no object, no GPU memory, no change to the objects it was
  *   given (an asset's instance count included), so the host may fix the input and call again.
  * - Units are metres, seconds and radians.
- * - Thread safety: a context and the objects made from it may be used from one thread at a time.
+ * - Thread safety: a context and the objects made from it may be used from one thread at a time, with one
+ *   exception for a frame's per-instance work: tressvk_set_frame and tressvk_plan_frame calls for distinct instances
+ *   of a context may run at the same time, from any threads (a job system's workers), while no other call of that
+ *   context runs. Their failures reach the message callback one at a time (the plugin serialises them) and
+ *   tressvk_last_error(context) once they have returned.
  *
  * docs/integration.md walks through a complete integration.
  */
@@ -193,6 +197,15 @@ TVK_API TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSet
 /* This frame's motion, wind and colliders. Call before tressvk_cmd_simulate; the frame is copied. An instance
  * whose frame was not set since its last simulation keeps its pose and advances no time (dt 0). */
 TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame);
+/* Plans the instance's frame now (the frame of the last tressvk_set_frame, or dt 0 when none was set since the last
+ * simulation): its substeps, the skinning of every bone its strands read and its colliders and wind, in double
+ * precision and simulation space, converted for the GPU. This is the simulation's CPU work for the instance;
+ * tressvk_cmd_simulate then only copies the plan into the frame's parameters. Optional: tressvk_cmd_simulate plans
+ * every instance not planned, so calling it changes no result, only where the work runs. Call it after the frame's
+ * tressvk_set_frame, from any thread (see "Thread safety" above: set_frame and plan_frame of distinct instances may run
+ * concurrently), and simulate the instance before its next tressvk_set_frame (which refuses a planned instance).
+ * Planning twice is planning once. Settings and parameters changed after planning apply from the next frame. */
+TVK_API TvkResult tressvk_plan_frame(TvkInstance instance);
 /* Follow hairs only for the strands the host will draw: `strands` is the most rendered strands (a prefix: guides,
  * then follow layers; tressvk_get_draw_strands gives the count a draw's LOD picks) any draw of the coming frames
  * takes, and the simulation writes follow hairs below it only: a groom drawn thinned by LOD does not pay for the

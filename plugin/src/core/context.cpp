@@ -36,6 +36,7 @@ void set_message(std::string& out, const char* format, va_list args) noexcept {
 thread_local std::string g_error_without_context;
 
 TvkResult Context::fail(TvkResult result, const char* format, ...) {
+  const std::lock_guard<std::recursive_mutex> lock(report_mutex);
   ++error_serial;
   va_list args;
   va_start(args, format);
@@ -59,6 +60,7 @@ void Context::message(TvkMessageSeverity severity, const char* format, ...) {
   va_start(args, format);
   const std::string text = vformat(format, args);
   va_end(args);
+  const std::lock_guard<std::recursive_mutex> lock(report_mutex);
   info.message_callback(severity, text.c_str(), info.message_user_data);
 }
 

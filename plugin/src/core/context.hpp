@@ -9,6 +9,7 @@
 
 #include <cstdarg>
 #include <exception>
+#include <mutex>
 #include <new>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ struct Context {
   VmaAllocator allocator = VK_NULL_HANDLE;    // private to TressVK, on the host's device
   uint32_t frames_in_flight = 2;
   std::string last_error;
+  // fail() and message() take it: tressvk_set_frame and tressvk_plan_frame of distinct instances may run on several
+  // threads at once (tressvk.h, "Thread safety"), and their failures report through the context.
+  std::recursive_mutex report_mutex;  // recursive: a message callback may call back into TressVK
   // Set by tressvk_report_device_lost or a Vulkan call of ours that returned VK_ERROR_DEVICE_LOST; then every call
   // that would use the device refuses (require_device) and only destruction works.
   bool device_lost = false;

@@ -42,6 +42,10 @@ struct TvkInstance_T {
   std::vector<TvkBoneMatrix> bones;     // copy of frame.bones
   bool frame_set = false;
   std::unique_ptr<tressvk::model::FramePlanner> planner;
+  // tressvk_plan_frame: this frame's plan and its GPU form, made ahead of tressvk_cmd_simulate, which takes them.
+  bool planned = false;
+  tressvk::model::FramePlan plan;
+  tressvk::model::GpuFrame planned_gpu;
 
   // Dynamic state, bindings 0..3, the counters (binding 15, host-visible) and the guides' anchors (binding 16).
   tressvk::GpuBuffer positions, prev, prevprev, tangents, counters, anchors;

@@ -220,6 +220,10 @@ TvkResult tressvk_set_draw_strands(TvkInstance instance, uint32_t strands) {
 TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
   if (!instance || !frame) return TVK_ERROR_INVALID_ARGUMENT;
   Context& ctx = *instance->ctx;
+  if (instance->planned)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT,
+                    "tressvk_set_frame: the instance's frame is planned (tressvk_plan_frame) and not yet simulated: "
+                    "set a frame once, before planning it");
   // Every host number is checked here, so a NaN or infinity never reaches the GPU (where it would reset every strand
   // every step and freeze the groom) and the host learns which field was wrong.
   try {
@@ -235,6 +239,22 @@ TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame) {
     instance->bones.clear();
   }
   instance->frame_set = true;
+  return TVK_SUCCESS;
+}
+
+TvkResult tressvk_plan_frame(TvkInstance instance) {
+  if (!instance) return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_plan_frame: instance is NULL");
+  if (instance->planned) return TVK_SUCCESS;
+  // Touches this instance only (and the context's reporting, which locks): safe beside other instances' calls.
+  try {
+    instance->plan = instance->planner->plan_validated(instance->frame);  // checked at tressvk_set_frame
+    tressvk::model::to_gpu_into(instance->plan, instance->planned_gpu);
+  } catch (const std::bad_alloc&) {
+    return instance->ctx->fail(TVK_ERROR_OUT_OF_MEMORY, "tressvk_plan_frame: out of host memory");
+  } catch (const std::exception& e) {
+    return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_plan_frame: %s", e.what());
+  }
+  instance->planned = true;
   return TVK_SUCCESS;
 }
 

@@ -297,11 +297,18 @@ struct Crowd {
 // Plans the instance's frame and writes its parameters into this frame's ring slice.
 TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const Crowd& crowd) {
   work.inst = &inst;
-  work.plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
-  // One conversion buffer for every instance in turn, so that it stays in the cache. (A buffer per instance kept
-  // between frames read 30 % slower for 64 skinned Ratboys on one H100 host, within noise on another.)
-  model::to_gpu_into(work.plan, ctx.gpu_frame_scratch);
-  const model::GpuFrame& gpu = ctx.gpu_frame_scratch;
+  // Planned ahead (tressvk_plan_frame, perhaps on another thread), or here. Unplanned instances convert into one
+  // buffer of the context in turn, so that it stays in the cache. (A buffer per instance kept between frames read 30 %
+  // slower for 64 skinned Ratboys on one H100 host when every bone was carried, within noise on another.)
+  const bool planned = inst.planned;
+  if (planned) {
+    work.plan = std::move(inst.plan);
+    inst.planned = false;
+  } else {
+    work.plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
+    model::to_gpu_into(work.plan, ctx.gpu_frame_scratch);
+  }
+  const model::GpuFrame& gpu = planned ? inst.planned_gpu : ctx.gpu_frame_scratch;
   work.steps = static_cast<uint32_t>(work.plan.steps.size());
   work.skin_stride = gpu.skin_stride;
   if (work.steps > TVK_MAX_STEPS_PER_FRAME)
@@ -310,7 +317,8 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   const uint32_t slice = static_cast<uint32_t>(ctx.frame % ctx.frames_in_flight);
   const VkDeviceSize base = VkDeviceSize{slice} * inst.slice_size;
   auto* ring = static_cast<std::byte*>(inst.ring.mapped);
-  const double h = inst.planner->step_length();
+  // The plan's own step: settings changed after tressvk_plan_frame apply from the next frame.
+  const double h = work.plan.steps.empty() ? inst.planner->step_length() : work.plan.steps.front().h;
   std::vector<sim::GroupParams> groups(inst.params.size());
   const bool compliant = model::is_compliant_family(model::resolve_model(inst.settings.model));
   for (size_t g = 0; g < inst.params.size(); ++g) {
