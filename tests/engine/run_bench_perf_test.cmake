@@ -101,38 +101,26 @@ foreach(path default fused passes)
 endforeach()
 
 # A crowd (--instances 3): every instance in one tressvk_cmd_simulate, one frame-kernel dispatch each, validation clean
-# (the instances' barriers are their own buffers'), the step error the first instance's.
-set(json "${OUT_DIR}/crowd.json")
-run_perf("--instances 3" "${json}" ""
-         --builtin curly --guides 40 --instances 3 --scene shake --frames 4 --warmup 2 --error-frames 1 --validation
-         --warmup-ms 0 --warmup-ms-max 0)
-string(JSON instances GET "${text}" instances)
-string(JSON dispatches GET "${text}" dispatches_per_frame)
-string(JSON crowd_error GET "${text}" step_error_max_rel)
-if(NOT instances EQUAL 3 OR NOT dispatches EQUAL 3)
-  message(FATAL_ERROR "perf --instances 3: ${instances} instances, ${dispatches} dispatches per frame, expected 3 and 3")
-endif()
-if(crowd_error GREATER 1e-5)
-  message(FATAL_ERROR "perf --instances 3: step error ${crowd_error} over 1e-5")
-endif()
-message(STATUS "crowd of 3: ${dispatches} dispatches/frame, step error ${crowd_error}")
-
-# --plan-threads: the crowd's frames planned on two threads (tressvk_set_frame and tressvk_plan_frame of distinct
-# instances at once), validation clean, the same dispatches and step error bar as the crowd above.
-set(json "${OUT_DIR}/plan_threads.json")
-run_perf("--plan-threads 2" "${json}" ""
-         --builtin curly --guides 40 --instances 3 --plan-threads 2 --scene shake --frames 4 --warmup 2 --error-frames 1
-         --validation --warmup-ms 0 --warmup-ms-max 0)
-string(JSON plan_threads GET "${text}" plan_threads)
-string(JSON dispatches GET "${text}" dispatches_per_frame)
-string(JSON planned_error GET "${text}" step_error_max_rel)
-if(NOT plan_threads EQUAL 2 OR NOT dispatches EQUAL 3)
-  message(FATAL_ERROR "perf --plan-threads 2: ${plan_threads} plan threads, ${dispatches} dispatches, expected 2 and 3")
-endif()
-if(planned_error GREATER 1e-5)
-  message(FATAL_ERROR "perf --plan-threads 2: step error ${planned_error} over 1e-5")
-endif()
-message(STATUS "crowd of 3 planned on 2 threads: step error ${planned_error}")
+# (the instances' barriers are their own buffers'), the step error the first instance's; then the same crowd's frames
+# planned on two threads (--plan-threads 2: tressvk_set_frame and tressvk_plan_frame of distinct instances at once).
+foreach(threads 0 2)
+  set(json "${OUT_DIR}/crowd-${threads}.json")
+  run_perf("--instances 3 --plan-threads ${threads}" "${json}" ""
+           --builtin curly --guides 40 --instances 3 --plan-threads ${threads} --scene shake --frames 4 --warmup 2
+           --error-frames 1 --validation --warmup-ms 0 --warmup-ms-max 0)
+  string(JSON instances GET "${text}" instances)
+  string(JSON plan_threads GET "${text}" plan_threads)
+  string(JSON dispatches GET "${text}" dispatches_per_frame)
+  string(JSON crowd_error GET "${text}" step_error_max_rel)
+  if(NOT instances EQUAL 3 OR NOT plan_threads EQUAL threads OR NOT dispatches EQUAL 3)
+    message(FATAL_ERROR "perf --instances 3 --plan-threads ${threads}: ${instances} instances, ${plan_threads} plan "
+                        "threads, ${dispatches} dispatches per frame, expected 3, ${threads} and 3")
+  endif()
+  if(crowd_error GREATER 1e-5)
+    message(FATAL_ERROR "perf --instances 3 --plan-threads ${threads}: step error ${crowd_error} over 1e-5")
+  endif()
+  message(STATUS "crowd of 3, ${threads} plan threads: ${dispatches} dispatches/frame, step error ${crowd_error}")
+endforeach()
 
 # --draw-strands: the follow hairs of the drawn prefix only (tressvk_set_draw_strands), the step error over those,
 # validation clean.
