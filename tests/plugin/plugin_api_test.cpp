@@ -102,6 +102,9 @@ TEST_CASE("bad arguments return codes, never crash", "[plugin]") {
   TvkSimulateInfo si{};
   si.struct_size = sizeof(si) + 1;
   CHECK(tressvk_cmd_simulate(ctx.get(), VK_NULL_HANDLE, &si) == TVK_ERROR_INVALID_ARGUMENT);
+  CHECK(tressvk_set_frame(nullptr, nullptr) == TVK_ERROR_INVALID_ARGUMENT);
+  CHECK(tressvk_plan_frame(nullptr) == TVK_ERROR_INVALID_ARGUMENT);
+  CHECK(std::string(tressvk_last_error(nullptr)).find("tressvk_plan_frame") != std::string::npos);
   CHECK(tressvk_check_version(TVK_VERSION_NUM, sizeof(TvkContextCreateInfo)) == TVK_SUCCESS);
   CHECK(tressvk_check_version(TVK_VERSION_NUM + 100, sizeof(TvkContextCreateInfo)) == TVK_ERROR_VERSION_MISMATCH);
 }
