@@ -42,10 +42,13 @@ struct TvkInstance_T {
   std::vector<TvkBoneMatrix> bones;     // copy of frame.bones
   bool frame_set = false;
   std::unique_ptr<tressvk::model::FramePlanner> planner;
-  // tressvk_plan_frame: this frame's plan and its GPU form, made ahead of tressvk_cmd_simulate, which takes them.
+  // tressvk_plan_frame: this frame's plan in its GPU form, made ahead of tressvk_cmd_simulate, which takes it, and what
+  // the call needs of the plan itself (the planner's substeps are freed on the planning thread).
   bool planned = false;
-  tressvk::model::FramePlan plan;
   tressvk::model::GpuFrame planned_gpu;
+  uint32_t planned_steps = 0;
+  double planned_h = 0;                    // the plan's step (s): settings set after planning apply next frame
+  std::array<double, 3> planned_origin{};  // FramePlan::sim_origin
 
   // Dynamic state, bindings 0..3, the counters (binding 15, host-visible) and the guides' anchors (binding 16).
   tressvk::GpuBuffer positions, prev, prevprev, tangents, counters, anchors;

@@ -4,6 +4,7 @@
 #include "sim/fused.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -206,8 +207,8 @@ void record_barriers(Context& ctx, VkCommandBuffer cmd, const std::vector<VkBuff
 
 struct InstanceWork {
   TvkInstance_T* inst = nullptr;
-  model::FramePlan plan;
   uint32_t steps = 0;
+  std::array<double, 3> sim_origin{};  // the plan's (FramePlan::sim_origin)
   uint32_t skin_stride = 0;  // vec4 per substep
   std::vector<PassUse> passes;
   std::array<uint32_t, 3> dynamic_offsets{};
@@ -300,16 +301,22 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   // Planned ahead (tressvk_plan_frame, perhaps on another thread), or here. Unplanned instances convert into one
   // buffer of the context in turn, so that it stays in the cache. (A buffer per instance kept between frames read 30 %
   // slower for 64 skinned Ratboys on one H100 host when every bone was carried, within noise on another.)
+  // The plan's own step: settings changed after tressvk_plan_frame apply from the next frame.
   const bool planned = inst.planned;
+  double h = 0;
   if (planned) {
-    work.plan = std::move(inst.plan);
+    work.steps = inst.planned_steps;
+    work.sim_origin = inst.planned_origin;
+    h = inst.planned_h;
     inst.planned = false;
   } else {
-    work.plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
-    model::to_gpu_into(work.plan, ctx.gpu_frame_scratch);
+    const model::FramePlan plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
+    model::to_gpu_into(plan, ctx.gpu_frame_scratch);
+    work.steps = static_cast<uint32_t>(plan.steps.size());
+    work.sim_origin = plan.sim_origin;
+    h = plan.steps.empty() ? inst.planner->step_length() : plan.steps.front().h;
   }
   const model::GpuFrame& gpu = planned ? inst.planned_gpu : ctx.gpu_frame_scratch;
-  work.steps = static_cast<uint32_t>(work.plan.steps.size());
   work.skin_stride = gpu.skin_stride;
   if (work.steps > TVK_MAX_STEPS_PER_FRAME)
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "a frame planned %u steps (limit %u)", work.steps,
@@ -317,8 +324,6 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   const uint32_t slice = static_cast<uint32_t>(ctx.frame % ctx.frames_in_flight);
   const VkDeviceSize base = VkDeviceSize{slice} * inst.slice_size;
   auto* ring = static_cast<std::byte*>(inst.ring.mapped);
-  // The plan's own step: settings changed after tressvk_plan_frame apply from the next frame.
-  const double h = work.plan.steps.empty() ? inst.planner->step_length() : work.plan.steps.front().h;
   std::vector<sim::GroupParams> groups(inst.params.size());
   const bool compliant = model::is_compliant_family(model::resolve_model(inst.settings.model));
   for (size_t g = 0; g < inst.params.size(); ++g) {
@@ -590,7 +595,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
     inst.steps += w.steps;
     inst.steps_last_frame = w.steps;
     ++inst.frames;
-    inst.sim_origin = w.plan.sim_origin;
+    inst.sim_origin = w.sim_origin;
     inst.frame.teleport = 0;
     inst.frame.reset = 0;
     inst.frame.dt = 0.0f;
