@@ -408,7 +408,7 @@ TEST_CASE("frames planned on worker threads simulate bit for bit as frames plann
       CHECK(std::string(tressvk_last_error(ctx.get())).find("planned") != std::string::npos);
       CHECK(tressvk_plan_frame(threaded[0]->handle()) == TVK_SUCCESS);  // planned already: nothing more
     }
-    if (f == 4) {  // settings set after planning apply from the next frame, for both
+    if (f == 4) {  // a step rate set after planning applies from the next frame, for both
       TvkSimSettings slower = settings;
       slower.time.step_rate = 120.0f;
       for (test::GpuInstance* m : threaded) REQUIRE(tressvk_set_sim_settings(m->handle(), &slower) == TVK_SUCCESS);

@@ -204,7 +204,8 @@ TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* fra
  * every instance not planned, so calling it changes no result, only where the work runs. Call it after the frame's
  * tressvk_set_frame, from any thread (see "Thread safety" above: set_frame and plan_frame of distinct instances may run
  * concurrently), and simulate the instance before its next tressvk_set_frame (which refuses a planned instance).
- * Planning twice is planning once. Settings and parameters changed after planning apply from the next frame. */
+ * Planning twice is planning once. A planned frame keeps the step rate, gravity and step limits it was planned with;
+ * the other settings and the parameters are read when it is simulated. */
 TVK_API TvkResult tressvk_plan_frame(TvkInstance instance);
 /* Follow hairs only for the strands the host will draw: `strands` is the most rendered strands (a prefix: guides,
  * then follow layers; tressvk_get_draw_strands gives the count a draw's LOD picks) any draw of the coming frames

@@ -47,7 +47,7 @@ struct TvkInstance_T {
   bool planned = false;
   tressvk::model::GpuFrame planned_gpu;
   uint32_t planned_steps = 0;
-  double planned_h = 0;                    // the plan's step (s): settings set after planning apply next frame
+  double planned_h = 0;                    // the plan's step (s): a step rate set after planning applies next frame
   std::array<double, 3> planned_origin{};  // FramePlan::sim_origin
 
   // Dynamic state, bindings 0..3, the counters (binding 15, host-visible) and the guides' anchors (binding 16).

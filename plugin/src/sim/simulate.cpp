@@ -301,7 +301,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   // Planned ahead (tressvk_plan_frame, perhaps on another thread), or here. Unplanned instances convert into one
   // buffer of the context in turn, so that it stays in the cache. (A buffer per instance kept between frames read 30 %
   // slower for 64 skinned Ratboys on one H100 host when every bone was carried, within noise on another.)
-  // The plan's own step: settings changed after tressvk_plan_frame apply from the next frame.
+  // The plan's own step: a step rate set after tressvk_plan_frame applies from the next frame.
   const bool planned = inst.planned;
   double h = 0;
   if (planned) {
