@@ -45,10 +45,11 @@ foreach(path default fused passes)
            --builtin curly --guides 40 --follows 1 --scene shake --frames ${frames} --warmup 2 --error-frames 2 --validation
            --warmup-ms 0 --warmup-ms-max 200 ${timings})
   # copy_gb_per_s: the copy kernel's; transfer_copy_gb_per_s: vkCmdCopyBuffer's (both of the frame's bytes).
-  # host_ms_per_frame: the CPU time of the plugin's per-frame calls (set_frame, new_frame, cmd_simulate).
+  # host_ms_per_frame: the CPU time of the plugin's per-frame calls (set_frame, new_frame, cmd_simulate);
+  # host_simulate_ms_per_frame: cmd_simulate's alone, a part of it.
   foreach(key gpu_ms_per_frame gpu_ms_per_frame_p99 bytes_per_frame achieved_gb_per_s copy_gb_per_s
               transfer_copy_gb_per_s dispatches_per_frame step_error_max_rel steps_per_frame guide_vertices
-              host_ms_per_frame host_ms_per_frame_p99 ${timing_keys})
+              host_ms_per_frame host_ms_per_frame_p99 host_simulate_ms_per_frame ${timing_keys})
     string(JSON value ERROR_VARIABLE missing GET "${text}" ${key})
     if(missing)
       message(FATAL_ERROR "perf (${path}): key ${key} missing from ${json}")
@@ -60,6 +61,10 @@ foreach(path default fused passes)
   endforeach()
   if(host_ms_per_frame_p99 LESS host_ms_per_frame)
     message(FATAL_ERROR "perf (${path}): host_ms_per_frame_p99 ${host_ms_per_frame_p99} under its median ${host_ms_per_frame}")
+  endif()
+  if(host_simulate_ms_per_frame GREATER host_ms_per_frame)  # a part of every frame's calls: its median is no more
+    message(FATAL_ERROR "perf (${path}): host_simulate_ms_per_frame ${host_simulate_ms_per_frame} over the whole "
+                        "calls' ${host_ms_per_frame}")
   endif()
   # The warm-up (at least --warmup frames, then until the frame time settles, here at most 200 ms: the bound keeps
   # the test short on lavapipe, whose frame times wander with the host's load).

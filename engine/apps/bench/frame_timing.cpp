@@ -149,8 +149,12 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
     fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     const auto h1 = std::chrono::steady_clock::now();
     host::check_tvk(host::record_simulate(ctx, fr.cmd, instances), ctx, "tressvk_cmd_simulate");
-    host += since(h1);
-    if (first_timed != UINT32_MAX && f < first_timed + frames) out.host_ms.push_back(host);
+    const double record_ms = since(h1);
+    host += record_ms;
+    if (first_timed != UINT32_MAX && f < first_timed + frames) {
+      out.host_ms.push_back(host);
+      out.record_ms.push_back(record_ms);
+    }
     out.dispatches = std::max(out.dispatches, tressvk_get_recorded_dispatches(ctx));
     fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     loop.end();

@@ -29,6 +29,8 @@ struct FrameTimes {
   std::vector<double> host_ms;   // per timed frame, wall time of the plugin's per-frame calls: tressvk_set_frame (and
                                  // with plan threads tressvk_plan_frame) for every instance, tressvk_new_frame and
                                  // tressvk_cmd_simulate (the frame loop's own waits for a free slot left out)
+  std::vector<double> record_ms; // per timed frame, the tressvk_cmd_simulate call alone (what stays on the recording
+                                 // thread once plan threads have planned every instance)
   uint32_t dispatches = 0;       // most dispatches in a frame (tressvk_get_recorded_dispatches)
   double steps_per_frame = 0;    // over every recorded frame
   double wall_ms = 0;            // CPU wall time of the timed frames, all of them

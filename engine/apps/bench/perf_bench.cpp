@@ -361,6 +361,7 @@ int execute_perf_command(const PerfCommand& given) {
         {"wall_ms_per_frame", wall_ms / cmd.frames},
         {"host_ms_per_frame", times.host_ms.empty() ? 0.0 : percentile(times.host_ms, 0.5)},
         {"host_ms_per_frame_p99", times.host_ms.empty() ? 0.0 : percentile(times.host_ms, 0.99)},
+        {"host_simulate_ms_per_frame", times.record_ms.empty() ? 0.0 : percentile(times.record_ms, 0.5)},
         {"bytes_per_frame", frame_byte_count},
         {"achieved_gb_per_s", gpu_ms > 0 ? double(frame_byte_count) / (gpu_ms * 1e-3) * 1e-9 : 0.0},
         {"copy_ms", copy.ms},
