@@ -355,10 +355,11 @@ TEST_CASE("a crowd takes the one-thread kernel at any step rate and keeps every 
   }
 }
 
-// A host's job system plans each instance's frame on its own worker (tressvk_set_frame and tressvk_plan_frame of
-// distinct instances at once, tressvk.h "Thread safety"); tressvk_cmd_simulate then only copies the plans. Planned or
-// not, every instance ends every frame bit for bit where the same frames planned by tressvk_cmd_simulate put it,
-// through collisions, a teleport and a frame whose settings change after it was planned. A planned instance refuses
+// A host's job system plans each instance's frame on its own worker (the per-instance calls of distinct instances at
+// once, tressvk.h "Thread safety": here set_sim_params, set_draw_strands, set_frame, plan_frame and set_sim_settings,
+// one call refused on one worker while the others succeed); tressvk_cmd_simulate then only copies the plans. Planned
+// or not, every instance ends every frame bit for bit where the same frames planned by tressvk_cmd_simulate put it,
+// through collisions, a teleport and a frame whose step rate changes after it was planned. A planned instance refuses
 // a second set_frame until it is simulated, and a second plan is planning once.
 TEST_CASE("frames planned on worker threads simulate bit for bit as frames planned by the simulate call",
           "[plugin][simulation]") {
@@ -388,19 +389,35 @@ TEST_CASE("frames planned on worker threads simulate bit for bit as frames plann
     }
     test::run_frame_batched(ctx.get(), serial, frames);
 
-    std::vector<TvkResult> set(kInstances, TVK_ERROR_INVALID_ARGUMENT), plan(kInstances, TVK_ERROR_INVALID_ARGUMENT);
+    // At frame 4 every worker also sets a slower step rate after planning: the planned frame keeps its own.
+    TvkSimSettings slower = settings;
+    slower.time.step_rate = 120.0f;
+    TvkSimParams bad = params.front();
+    bad.local_stiffness = 2.0f;  // refused on worker 1 at frame 1, beside the others' calls
+    std::vector<TvkResult> set(kInstances, TVK_ERROR_INVALID_ARGUMENT), plan(kInstances, TVK_ERROR_INVALID_ARGUMENT),
+        other(kInstances, TVK_ERROR_INVALID_ARGUMENT), refused(kInstances, TVK_ERROR_INVALID_ARGUMENT);
     {
       std::vector<std::thread> workers;
       for (size_t i = 0; i < kInstances; ++i)
         workers.emplace_back([&, i] {
-          set[i] = tressvk_set_frame(threaded[i]->handle(), &frames[i]);
-          plan[i] = tressvk_plan_frame(threaded[i]->handle());
+          const TvkInstance h = threaded[i]->handle();
+          other[i] = tressvk_set_sim_params(h, TVK_ALL_GROUPS, &params.front());
+          if (other[i] == TVK_SUCCESS) other[i] = tressvk_set_draw_strands(h, 0);
+          if (f == 1 && i == 1) refused[i] = tressvk_set_sim_params(h, TVK_ALL_GROUPS, &bad);
+          set[i] = tressvk_set_frame(h, &frames[i]);
+          plan[i] = tressvk_plan_frame(h);
+          if (f == 4 && other[i] == TVK_SUCCESS) other[i] = tressvk_set_sim_settings(h, &slower);
         });
       for (std::thread& w : workers) w.join();
     }
     for (size_t i = 0; i < kInstances; ++i) {
+      CHECK(other[i] == TVK_SUCCESS);
       CHECK(set[i] == TVK_SUCCESS);
       CHECK(plan[i] == TVK_SUCCESS);
+    }
+    if (f == 1) {
+      CHECK(refused[1] == TVK_ERROR_INVALID_ARGUMENT);
+      CHECK(std::string(tressvk_last_error(ctx.get())).find("local_stiffness") != std::string::npos);
     }
     INFO(tressvk_last_error(ctx.get()));
     if (f == 2) {
@@ -408,10 +425,7 @@ TEST_CASE("frames planned on worker threads simulate bit for bit as frames plann
       CHECK(std::string(tressvk_last_error(ctx.get())).find("planned") != std::string::npos);
       CHECK(tressvk_plan_frame(threaded[0]->handle()) == TVK_SUCCESS);  // planned already: nothing more
     }
-    if (f == 4) {  // a step rate set after planning applies from the next frame, for both
-      TvkSimSettings slower = settings;
-      slower.time.step_rate = 120.0f;
-      for (test::GpuInstance* m : threaded) REQUIRE(tressvk_set_sim_settings(m->handle(), &slower) == TVK_SUCCESS);
+    if (f == 4) {  // a step rate set after planning applies from the next frame: the serial ones' after simulating
       for (test::GpuInstance* m : serial) REQUIRE(tressvk_set_sim_settings(m->handle(), &slower) == TVK_SUCCESS);
     }
     REQUIRE(tressvk_new_frame(ctx.get()) == TVK_SUCCESS);

@@ -16,10 +16,11 @@
  *   given (an asset's instance count included), so the host may fix the input and call again.
  * - Units are metres, seconds and radians.
  * - Thread safety: a context and the objects made from it may be used from one thread at a time, with one
- *   exception for a frame's per-instance work: tressvk_set_frame and tressvk_plan_frame calls for distinct instances
- *   of a context may run at the same time, from any threads (a job system's workers), while no other call of that
- *   context runs. Their failures reach the message callback one at a time (the plugin serialises them) and
- *   tressvk_last_error(context) once they have returned.
+ *   exception for a frame's per-instance work: tressvk_set_frame, tressvk_plan_frame, tressvk_set_sim_params,
+ *   tressvk_set_sim_settings and tressvk_set_draw_strands calls for distinct instances of a context may run at the same
+ *   time, from any threads (a job system's workers: each character's job calls them for its own instance), while no
+ *   other call of that context runs. Their failures reach the message callback one at a time (the plugin serialises
+ *   them) and tressvk_last_error(context) once they have returned.
  *
  * docs/integration.md walks through a complete integration.
  */
@@ -202,7 +203,7 @@ TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* fra
  * precision and simulation space, converted for the GPU. This is the simulation's CPU work for the instance;
  * tressvk_cmd_simulate then only copies the plan into the frame's parameters. Optional: tressvk_cmd_simulate plans
  * every instance not planned, so calling it changes no result, only where the work runs. Call it after the frame's
- * tressvk_set_frame, from any thread (see "Thread safety" above: set_frame and plan_frame of distinct instances may run
+ * tressvk_set_frame, from any thread (see "Thread safety" above: the per-instance calls of distinct instances may run
  * concurrently), and simulate the instance before its next tressvk_set_frame (which refuses a planned instance).
  * Planning twice is planning once. A planned frame keeps the step rate, gravity and step limits it was planned with;
  * the other settings and the parameters are read when it is simulated. */

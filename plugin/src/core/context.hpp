@@ -7,6 +7,7 @@
 #include <volk.h>
 #include <vk_mem_alloc.h>
 
+#include <atomic>
 #include <cstdarg>
 #include <exception>
 #include <mutex>
@@ -29,13 +30,15 @@ struct Context {
   VmaAllocator allocator = VK_NULL_HANDLE;    // private to TressVK, on the host's device
   uint32_t frames_in_flight = 2;
   std::string last_error;
-  // fail() and message() take it: tressvk_set_frame and tressvk_plan_frame of distinct instances may run on several
-  // threads at once (tressvk.h, "Thread safety"), and their failures report through the context.
+  // fail() and message() take it: the per-instance calls of distinct instances may run on several threads at once
+  // (tressvk.h, "Thread safety"), and their failures report through the context.
   std::recursive_mutex report_mutex;  // recursive: a message callback may call back into TressVK
   // Set by tressvk_report_device_lost or a Vulkan call of ours that returned VK_ERROR_DEVICE_LOST; then every call
   // that would use the device refuses (require_device) and only destruction works.
   bool device_lost = false;
-  uint64_t error_serial = 0;                  // counts fail() calls: guarded() sees whether a failure has a message
+  // Counts fail() calls: guarded() sees whether a failure has a message. Atomic: the per-instance calls may run on
+  // several threads at once (tressvk.h, "Thread safety").
+  std::atomic<uint64_t> error_serial{0};
 
   // Frame pacing: tressvk_new_frame() advances `frame`; the host promises that the GPU has finished the frame
   // recorded `frames_in_flight` frames earlier, so resources released then can be destroyed now.
