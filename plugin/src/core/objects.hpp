@@ -32,6 +32,16 @@ struct TvkAsset_T {
   void release();                       // drops one user; frees (deferred) at zero
 };
 
+namespace tressvk {
+// What tressvk_cmd_simulate needs of a frame's plan besides its GPU form (plan_frame: the planner's substeps are freed
+// where the plan is made).
+struct PlannedFrame {
+  uint32_t steps = 0;
+  double h = 0;                        // the plan's step (s): a step rate set after planning applies next frame
+  std::array<double, 3> sim_origin{};  // FramePlan::sim_origin
+};
+}  // namespace tressvk
+
 struct TvkInstance_T {
   tressvk::Context* ctx = nullptr;
   TvkAsset_T* asset = nullptr;
@@ -42,13 +52,10 @@ struct TvkInstance_T {
   std::vector<TvkBoneMatrix> bones;     // copy of frame.bones
   bool frame_set = false;
   std::unique_ptr<tressvk::model::FramePlanner> planner;
-  // tressvk_plan_frame: this frame's plan in its GPU form, made ahead of tressvk_cmd_simulate, which takes it, and what
-  // the call needs of the plan itself (the planner's substeps are freed on the planning thread).
+  // tressvk_plan_frame: this frame's plan in its GPU form, made ahead of tressvk_cmd_simulate, which takes it.
   bool planned = false;
+  tressvk::PlannedFrame plan;
   tressvk::model::GpuFrame planned_gpu;
-  uint32_t planned_steps = 0;
-  double planned_h = 0;                    // the plan's step (s): a step rate set after planning applies next frame
-  std::array<double, 3> planned_origin{};  // FramePlan::sim_origin
 
   // Dynamic state, bindings 0..3, the counters (binding 15, host-visible) and the guides' anchors (binding 16).
   tressvk::GpuBuffer positions, prev, prevprev, tangents, counters, anchors;
@@ -87,6 +94,9 @@ inline bool is_dynamic_binding(uint32_t b) {
 // Creates (once) the descriptor set layout and pipeline layout shared by every simulation pipeline.
 TvkResult ensure_sim_layouts(Context& ctx);
 void destroy_sim_objects(Context& ctx);
+// Plans the instance's current frame (validated at tressvk_set_frame) into `gpu`: tressvk_plan_frame's work, and
+// tressvk_cmd_simulate's for an instance not planned. Throws what the planner throws.
+PlannedFrame plan_frame(TvkInstance_T& inst, model::GpuFrame& gpu);
 // Builds the simulation pipelines that simulating `frame` would use for `inst` (tressvk_prewarm_instance).
 TvkResult prewarm_sim_pipelines(Context& ctx, const TvkInstance_T& inst, const TvkSimFrame& frame);
 

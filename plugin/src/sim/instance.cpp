@@ -247,11 +247,7 @@ TvkResult tressvk_plan_frame(TvkInstance instance) {
   if (instance->planned) return TVK_SUCCESS;
   // Touches this instance only (and the context's reporting, which locks): safe beside other instances' calls.
   try {
-    const tressvk::model::FramePlan plan = instance->planner->plan_validated(instance->frame);  // checked at set_frame
-    tressvk::model::to_gpu_into(plan, instance->planned_gpu);
-    instance->planned_steps = static_cast<uint32_t>(plan.steps.size());
-    instance->planned_h = plan.steps.empty() ? instance->planner->step_length() : plan.steps.front().h;
-    instance->planned_origin = plan.sim_origin;
+    instance->plan = tressvk::plan_frame(*instance, instance->planned_gpu);
   } catch (const std::bad_alloc&) {
     return instance->ctx->fail(TVK_ERROR_OUT_OF_MEMORY, "tressvk_plan_frame: out of host memory");
   } catch (const std::exception& e) {

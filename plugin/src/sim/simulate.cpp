@@ -207,8 +207,7 @@ void record_barriers(Context& ctx, VkCommandBuffer cmd, const std::vector<VkBuff
 
 struct InstanceWork {
   TvkInstance_T* inst = nullptr;
-  uint32_t steps = 0;
-  std::array<double, 3> sim_origin{};  // the plan's (FramePlan::sim_origin)
+  PlannedFrame plan;
   uint32_t skin_stride = 0;  // vec4 per substep
   std::vector<PassUse> passes;
   std::array<uint32_t, 3> dynamic_offsets{};
@@ -301,25 +300,14 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   // Planned ahead (tressvk_plan_frame, perhaps on another thread), or here. Unplanned instances convert into one
   // buffer of the context in turn, so that it stays in the cache. (A buffer per instance kept between frames read 30 %
   // slower for 64 skinned Ratboys on one H100 host when every bone was carried, within noise on another.)
-  // The plan's own step: a step rate set after tressvk_plan_frame applies from the next frame.
   const bool planned = inst.planned;
-  double h = 0;
-  if (planned) {
-    work.steps = inst.planned_steps;
-    work.sim_origin = inst.planned_origin;
-    h = inst.planned_h;
-    inst.planned = false;
-  } else {
-    const model::FramePlan plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
-    model::to_gpu_into(plan, ctx.gpu_frame_scratch);
-    work.steps = static_cast<uint32_t>(plan.steps.size());
-    work.sim_origin = plan.sim_origin;
-    h = plan.steps.empty() ? inst.planner->step_length() : plan.steps.front().h;
-  }
+  work.plan = planned ? inst.plan : plan_frame(inst, ctx.gpu_frame_scratch);
+  inst.planned = false;
+  const double h = work.plan.h;  // the plan's own step: a step rate set after tressvk_plan_frame applies next frame
   const model::GpuFrame& gpu = planned ? inst.planned_gpu : ctx.gpu_frame_scratch;
   work.skin_stride = gpu.skin_stride;
-  if (work.steps > TVK_MAX_STEPS_PER_FRAME)
-    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "a frame planned %u steps (limit %u)", work.steps,
+  if (work.plan.steps > TVK_MAX_STEPS_PER_FRAME)
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "a frame planned %u steps (limit %u)", work.plan.steps,
                     TVK_MAX_STEPS_PER_FRAME);
   const uint32_t slice = static_cast<uint32_t>(ctx.frame % ctx.frames_in_flight);
   const VkDeviceSize base = VkDeviceSize{slice} * inst.slice_size;
@@ -337,7 +325,7 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   // change of input (sleeping guides would leave the newly drawn follows unwritten), fewer is not.
   work.follow_strands = inst.asset->cpu.simulated_strands(inst.draw_strands);
   const bool more_follows = work.follow_strands > inst.follows_written;
-  const bool still = still_and_keep(groups, gpu, work.steps, inst.last_step_inputs) && !more_follows;
+  const bool still = still_and_keep(groups, gpu, work.plan.steps, inst.last_step_inputs) && !more_follows;
   if (!gpu.steps.empty())
     std::memcpy(ring + base + inst.steps_offset, gpu.steps.data(), gpu.steps.size() * sizeof(sim::StepParams));
   if (!gpu.skin.empty()) {
@@ -350,9 +338,9 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   const sim::SceneTerms terms = sim::scene_terms(inst.params, inst.frame, inst.asset->rest.follow_per_guide,
                                                  inst.asset->rest.pinned_tip_strands > 0);
   work.passes = passes_for_path(ctx, inst, terms,
-                                sim::crowd_prefers_one_thread(crowd.instances, crowd.guide_vertices, work.steps));
+                                sim::crowd_prefers_one_thread(crowd.instances, crowd.guide_vertices, work.plan.steps));
   // A frame without steps runs nothing and changes nothing: it leaves the count (and idleness) as they were.
-  if (work.steps == 0) return TVK_SUCCESS;
+  if (work.plan.steps == 0) return TVK_SUCCESS;
   inst.follows_written = work.follow_strands;
   // The fused frame kernels sleep; one pass per dispatch never does. Still frames in a row: one in kMeasureEvery
   // measures the strands' motion (layout.glsl), the others pass the threshold negated.
@@ -390,6 +378,13 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
 }
 
 }  // namespace
+
+PlannedFrame plan_frame(TvkInstance_T& inst, model::GpuFrame& gpu) {
+  const model::FramePlan plan = inst.planner->plan_validated(inst.frame);  // checked at tressvk_set_frame
+  model::to_gpu_into(plan, gpu);
+  return {static_cast<uint32_t>(plan.steps.size()),
+          plan.steps.empty() ? inst.planner->step_length() : plan.steps.front().h, plan.sim_origin};
+}
 
 TvkResult prewarm_sim_pipelines(Context& ctx, const TvkInstance_T& inst, const TvkSimFrame& frame) {
   if (TvkResult r = ensure_sim_layouts(ctx); r != TVK_SUCCESS) return r;
@@ -492,7 +487,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
   const auto record_slot = [&](PassId id, uint32_t step, bool per_frame) -> TvkResult {
     std::vector<std::pair<InstanceWork*, const PassUse*>> users;
     for (InstanceWork& w : work) {
-      if (per_frame ? w.steps == 0 : step >= w.steps) continue;
+      if (per_frame ? w.plan.steps == 0 : step >= w.plan.steps) continue;
       if (w.idle) continue;  // every guide asleep in a still frame: nothing to run
       for (const PassUse& u : w.passes)
         if (u.info->id == id) users.emplace_back(&w, &u);
@@ -538,8 +533,8 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
       ctx.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, ctx.sim_pipeline_layout, 0, 1, &inst.set, 3,
                                      w->dynamic_offsets.data());
       const bool fused = u->info->id == PassId::kFrame;  // all substeps from step 0 in one dispatch
-      const uint32_t s = fused ? 0 : per_frame ? w->steps - 1 : step;
-      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, w->counter_index, w->steps,
+      const uint32_t s = fused ? 0 : per_frame ? w->plan.steps - 1 : step;
+      const sim::PushConstants pc{rest.guide_count, s, s * w->skin_stride, 0, w->counter_index, w->plan.steps,
                                   w->skin_stride, w->rest_move, w->follow_strands};
       ctx.vk.vkCmdPushConstants(cmd, ctx.sim_pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
       const uint32_t groups = sim::is_frame_lanes(u->info)
@@ -568,7 +563,7 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
   };
 
   uint32_t max_steps = 0;
-  for (const InstanceWork& w : work) max_steps = std::max(max_steps, w.steps);
+  for (const InstanceWork& w : work) max_steps = std::max(max_steps, w.plan.steps);
   for (uint32_t s = 0; s < max_steps; ++s)
     for (const sim::PassInfo& p : sim::pass_table())
       if (p.frequency == sim::Frequency::kPerSubstep)
@@ -592,10 +587,10 @@ static TvkResult record_simulation(tressvk::Context& ctx, VkCommandBuffer cmd, c
                                         VK_ACCESS_2_HOST_READ_BIT));
     }
     TvkInstance_T& inst = *w.inst;
-    inst.steps += w.steps;
-    inst.steps_last_frame = w.steps;
+    inst.steps += w.plan.steps;
+    inst.steps_last_frame = w.plan.steps;
     ++inst.frames;
-    inst.sim_origin = w.sim_origin;
+    inst.sim_origin = w.plan.sim_origin;
     inst.frame.teleport = 0;
     inst.frame.reset = 0;
     inst.frame.dt = 0.0f;

@@ -71,7 +71,6 @@ struct Substep {
 
 struct FramePlan {
   std::vector<Substep> steps;        // may be empty (a frame shorter than the time left to the next step)
-  bool skinned = false;              // skin holds one transform per bone read (else one rigid transform)
   std::array<double, 3> sim_origin{};// world position of the simulation origin after the last step (double)
   uint32_t dropped_steps = 0;        // whole steps dropped by the cap in this frame
 };
