@@ -9,7 +9,7 @@
 # BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default: build/portable). DATADIR holds
 # tressfx/ratboy/Ratboy_mohawk.tfx (+ .tfxbone) for the Ratboy row (default: data/ beside the repository).
 # Writes one JSON file per run, table.md (the table) and sweep.md. Single tables instead: MODELS=1, SLEEP=1,
-# CROWD=1, CROWD_RULE=1, CHOICE=1, TERMS=1, FRAME_WG=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
+# CROWD=1, CROWD_RULE=1, CHOICE=1, SPLIT=1, TERMS=1, FRAME_WG=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
 # starting new sweep runs once spent, so that the whole script fits a bounded GPU session; rows not run are absent.
 set -euo pipefail
 OUT=${1:?usage: gpu-perf.sh OUTDIR [BINDIR [DATADIR]]}
@@ -160,6 +160,33 @@ if [ "${CHOICE:-0}" = 1 ]; then
     perf "choice-curly4M-default" default --builtin curly --guides 131072 $T
     perf "choice-curly4M-conservative120" default --builtin curly --guides 131072 $REC $T
   } | tee "$OUT/choice.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# SPLIT=1: only "Where its frame goes at scale" (docs/accuracy.md, "A conservative local shape"): the conservative
+# model at its recommended 120 Hz with 0, 1 and 2 local iterations on Ratboy, 1 M and 4 M guide vertices; beside it at
+# 1 M follow-the-leader with 1 iteration, the compliant model with 0 and 1, and the conservative model's one-strand
+# workgroups (TRESSVK_SIM_LANES=shared) with 0.
+if [ "${SPLIT:-0}" = 1 ]; then
+  C="--scene shake --frames 200 --warmup 60 --error-frames 1 --step-rate 120"
+  {
+    table_header
+    for li in 0 1 2; do
+      [ -f "$MOHAWK" ] && perf "split-ratboy-conservative-li$li" default --asset "$MOHAWK" --model conservative \
+        --local-iterations "$li" $C
+      perf "split-curly1M-conservative-li$li" default --builtin curly --guides 32768 --model conservative \
+        --local-iterations "$li" $C
+      perf "split-curly4M-conservative-li$li" default --builtin curly --guides 131072 --model conservative \
+        --local-iterations "$li" $C
+    done
+    perf "split-curly1M-ftl-li1" default --builtin curly --guides 32768 --local-iterations 1 $C
+    for li in 0 1; do
+      perf "split-curly1M-compliant-li$li" default --builtin curly --guides 32768 --model compliant --local-iterations "$li" $C
+    done
+    TRESSVK_SIM_LANES=shared perf "split-curly1M-conservative-li0-shared" default --builtin curly --guides 32768 \
+      --model conservative --local-iterations 0 $C
+  } | tee "$OUT/split.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi
