@@ -9,7 +9,7 @@
 # BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default: build/portable). DATADIR holds
 # tressfx/ratboy/Ratboy_mohawk.tfx (+ .tfxbone) for the Ratboy row (default: data/ beside the repository).
 # Writes one JSON file per run, table.md (the table) and sweep.md. Single tables instead: MODELS=1, SLEEP=1,
-# CROWD=1, CROWD_RULE=1, CHOICE=1, SPLIT=1, TERMS=1, FRAME_WG=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
+# CROWD=1, CROWD_RULE=1, CHOICE=1, SPLIT=1, WAVES=1, TERMS=1, FRAME_WG=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
 # starting new sweep runs once spent, so that the whole script fits a bounded GPU session; rows not run are absent.
 set -euo pipefail
 OUT=${1:?usage: gpu-perf.sh OUTDIR [BINDIR [DATADIR]]}
@@ -187,6 +187,27 @@ if [ "${SPLIT:-0}" = 1 ]; then
     TRESSVK_SIM_LANES=shared perf "split-curly1M-conservative-li0-shared" default --builtin curly --guides 32768 \
       --model conservative --local-iterations 0 $C
   } | tee "$OUT/split.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# WAVES=1: only "A small groom's frame is whole waves of workgroups" (docs/accuracy.md): the conservative model at
+# 120 Hz with 1 local iteration (and with local shape off) on curly grooms of 660 to 6,600 guides (0.5 to 5 waves of
+# its workgroups of ten strands on a 132-SM GPU), follow-the-leader's default beside it, then stop.
+if [ "${WAVES:-0}" = 1 ]; then
+  C="--scene shake --frames 200 --warmup 60 --error-frames 1"
+  {
+    table_header
+    for g in 660 1320 1330 1980 2640 3960 6600; do
+      perf "waves-conservative-li1-$g" default --builtin curly --guides "$g" --model conservative --step-rate 120 \
+        --local-iterations 1 $C
+    done
+    for g in 1320 1330 2640; do
+      perf "waves-conservative-li0-$g" default --builtin curly --guides "$g" --model conservative --step-rate 120 \
+        --local-iterations 0 $C
+    done
+    for g in 660 1320 2640 6600; do perf "waves-ftl-$g" default --builtin curly --guides "$g" $C; done
+  } | tee "$OUT/waves.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi
