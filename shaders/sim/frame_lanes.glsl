@@ -43,8 +43,12 @@ const uint kLanesC = kLanesB | (kLanesB >> 4u);
 #endif
 
 // The conservative local shape's systems (lanes_compliant.glsl), one per strand of the workgroup (slot: the strand's
-// place in it): N nodes of kNodeFloats floats; one node where the variant is not compiled.
+// place in it): N nodes of kNodeFloats floats; one float where the variant is not compiled or its local shape does
+// not run (no group with local iterations). The driver keeps a declared array whether or not the code reaches it, and
+// on an NVIDIA H100 (driver 580.159.04) a workgroup of 32 KB or more of shared memory runs alone on its SM: the
+// conservative kernel without local shape took 629 us for curly 1 M guide vertices with the array, 405 without.
 const uint kConservativeOn = (FEATURES >> 8u) & 1u;  // TVK_FEATURE_CONSERVATIVE
+const uint kConservativeShape = TVK_HAS(TVK_FEATURE_LOCAL_SHAPE) ? kConservativeOn : 0u;
 const uint kSlots = WORKGROUP_SIZE / LANES;          // strands per workgroup
 const uint kNodeFloats = 37u;
 // After a strand's N nodes, what its system's two halves hand each other (lanes_compliant.glsl, conservative_solve).
@@ -56,7 +60,7 @@ const uint kSlotFloats = (N * kNodeFloats + kExchangeFloats) | 1u;
 // halves kSlots from the next 32 (another NVIDIA subgroup, so that both halves run at once) where the workgroup has them.
 const uint kLowerSplit = ((kSlots + 31u) / 32u) * 32u;
 const uint kLowerFirst = kLowerSplit + kSlots <= WORKGROUP_SIZE ? kLowerSplit : kSlots;
-shared float s_blk[1u + kConservativeOn * (kSlots * kSlotFloats - 1u)];
+shared float s_blk[1u + kConservativeShape * (kSlots * kSlotFloats - 1u)];
 shared uint s_iters;
 shared uint s_awake;  // still frames: whether any strand of the workgroup is awake
 uint tvk_iterations = 0u;  // the most local-shape iterations of the workgroup's strands (conservative shape only)
