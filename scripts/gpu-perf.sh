@@ -166,8 +166,7 @@ fi
 
 # SPLIT=1: only "Where its frame goes at scale" (docs/accuracy.md, "A conservative local shape"): the conservative
 # model at its recommended 120 Hz with 0, 1 and 2 local iterations on Ratboy, 1 M and 4 M guide vertices; beside it at
-# 1 M follow-the-leader with 1 iteration, the compliant model with 0 and 1, and the conservative model's one-strand
-# workgroups (TRESSVK_SIM_LANES=shared) with 0.
+# 1 M follow-the-leader with 1 iteration and the compliant model with 0.
 if [ "${SPLIT:-0}" = 1 ]; then
   C="--scene shake --frames 200 --warmup 60 --error-frames 1 --step-rate 120"
   {
@@ -181,11 +180,7 @@ if [ "${SPLIT:-0}" = 1 ]; then
         --local-iterations "$li" $C
     done
     perf "split-curly1M-ftl-li1" default --builtin curly --guides 32768 --local-iterations 1 $C
-    for li in 0 1; do
-      perf "split-curly1M-compliant-li$li" default --builtin curly --guides 32768 --model compliant --local-iterations "$li" $C
-    done
-    TRESSVK_SIM_LANES=shared perf "split-curly1M-conservative-li0-shared" default --builtin curly --guides 32768 \
-      --model conservative --local-iterations 0 $C
+    perf "split-curly1M-compliant-li0" default --builtin curly --guides 32768 --model compliant --local-iterations 0 $C
   } | tee "$OUT/split.md"
   echo "done in $SECONDS s: $OUT"
   exit 0
