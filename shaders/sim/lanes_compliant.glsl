@@ -306,6 +306,46 @@ void solve_lower_half(uint base, uint n, uint k) {
   }
 }
 
+// Node k of every system (its pivot and right-hand side are the two halves' parts, so both halves make it with the
+// same arithmetic), then each half's back substitution towards its end: the solution u_v = (dx_v, mu_v) ends in node
+// v's floats 31..36. After the barrier that follows the halves' eliminations.
+void conservative_back_substitution(uint base, uint n, uint k, bool upper) {
+  uint o = base + kNodeFloats * k, e = base + kNodeFloats * n;
+  mat3 pxx, pmm, pmx;
+  pivot_inverse(node_sym(o + 10u) - node_sym(e), node_m3(o + 22u) - node_m3(e + 12u),
+                node_sym(o + 16u) + node_sym(e + 6u), pxx, pmm, pmx);
+  vec3 rx = node_v3(e + 27u) - node_v3(e + 21u), rm = node_v3(e + 30u) - node_v3(e + 24u);
+  vec3 ux = pxx * rx + transpose(pmx) * rm, um = pmx * rx + pmm * rm;  // u_k
+  if (upper) {
+    node_set_v3(o + 31u, ux);
+    node_set_v3(o + 34u, um);
+    // u_v = D_v^-1 (z_v - K(v+1, v)^T u_{v+1}), v = k - 1 .. 0
+    for (uint v = k; v-- > 0u;) {
+      o = base + kNodeFloats * v;
+      mat3 gpn = node_m3(o + kNodeFloats);
+      rx = node_v3(o + 31u) - transpose(gpn) * um;
+      rm = node_v3(o + 34u) - s_blk[o + 9u] * ux;
+      mat3 qmx = node_m3(o + 22u);
+      ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
+      um = qmx * rx + node_sym(o + 16u) * rm;
+      node_set_v3(o + 31u, ux);
+      node_set_v3(o + 34u, um);
+    }
+  } else {
+    // u_v = E_v^-1 (w_v - K(v, v-1) u_{v-1}), v = k + 1 .. n - 1
+    for (uint v = k + 1u; v < n; ++v) {
+      o = base + kNodeFloats * v;
+      rx = node_v3(o + 31u) - s_blk[o - kNodeFloats + 9u] * um;
+      rm = node_v3(o + 34u) - node_m3(o) * ux;
+      mat3 qmx = node_m3(o + 22u);
+      ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
+      um = qmx * rx + node_sym(o + 16u) * rm;
+      node_set_v3(o + 31u, ux);
+      node_set_v3(o + 34u, um);
+    }
+  }
+}
+
 // The workgroup's systems, one a strand (strands of at most 2 k + 2 nodes); called by every invocation (its barrier).
 // The solution u_v = (dx_v, mu_v) ends in node v's floats 31..36.
 void conservative_solve(uint n) {
@@ -317,43 +357,66 @@ void conservative_solve(uint n) {
   if (upper) solve_upper_half(base, n, k);
   else if (lower) solve_lower_half(base, n, k);
   barrier();
-  if (upper || lower) {
-    // Node k, by both halves (the same arithmetic): its pivot and right-hand side are the two halves' parts.
-    uint o = base + kNodeFloats * k, e = base + kNodeFloats * n;
-    mat3 pxx, pmm, pmx;
-    pivot_inverse(node_sym(o + 10u) - node_sym(e), node_m3(o + 22u) - node_m3(e + 12u),
-                  node_sym(o + 16u) + node_sym(e + 6u), pxx, pmm, pmx);
-    vec3 rx = node_v3(e + 27u) - node_v3(e + 21u), rm = node_v3(e + 30u) - node_v3(e + 24u);
-    vec3 ux = pxx * rx + transpose(pmx) * rm, um = pmx * rx + pmm * rm;  // u_k
-    if (upper) {
-      node_set_v3(o + 31u, ux);
-      node_set_v3(o + 34u, um);
-      // u_v = D_v^-1 (z_v - K(v+1, v)^T u_{v+1}), v = k - 1 .. 0
-      for (uint v = k; v-- > 0u;) {
-        o = base + kNodeFloats * v;
-        mat3 gpn = node_m3(o + kNodeFloats);
-        rx = node_v3(o + 31u) - transpose(gpn) * um;
-        rm = node_v3(o + 34u) - s_blk[o + 9u] * ux;
-        mat3 qmx = node_m3(o + 22u);
-        ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
-        um = qmx * rx + node_sym(o + 16u) * rm;
-        node_set_v3(o + 31u, ux);
-        node_set_v3(o + 34u, um);
+  if (upper || lower) conservative_back_substitution(base, n, k, upper);
+}
+
+// The same systems solved again with the factor conservative_solve left (D_v^-1 in floats 10..30, node k's two
+// parts, the couplings in floats 0..9), for a right-hand side with both parts, (x, multiplier), in every node's
+// floats 31..36; the solution ends there. No pivot is inverted but node k's: a fraction of the solve's cost.
+void conservative_resolve(uint n) {
+  const uint li = gl_LocalInvocationIndex;
+  const bool upper = li < kSlots;
+  const bool lower = li >= kLowerFirst && li < kLowerFirst + kSlots;
+  const uint base = kSlotFloats * (upper ? li : li - kLowerFirst);
+  const uint k = n / 2u;
+  const uint e = base + kNodeFloats * n;
+  if (upper) {
+    // z_v = r_v - K(v, v-1) D_{v-1}^-1 z_{v-1}, v = 0 .. k (node k's part to the exchange, as solve_upper_half)
+    mat3 pxx = mat3(0.0), pmm = mat3(0.0), pmx = mat3(0.0);
+    vec3 zx = vec3(0.0), zm = vec3(0.0);
+    float g = 0.0;
+    for (uint v = 0u; v <= k; ++v) {
+      uint o = base + kNodeFloats * v;
+      vec3 yx = pxx * zx + transpose(pmx) * zm, ym = pmx * zx + pmm * zm;
+      zx = node_v3(o + 31u) - g * ym;
+      zm = node_v3(o + 34u) - node_m3(o) * yx;
+      if (v == k) {
+        node_set_v3(e + 27u, zx);
+        node_set_v3(e + 30u, zm);
+        break;
       }
-    } else {
-      // u_v = E_v^-1 (w_v - K(v, v-1) u_{v-1}), v = k + 1 .. n - 1
-      for (uint v = k + 1u; v < n; ++v) {
-        o = base + kNodeFloats * v;
-        rx = node_v3(o + 31u) - s_blk[o - kNodeFloats + 9u] * um;
-        rm = node_v3(o + 34u) - node_m3(o) * ux;
-        mat3 qmx = node_m3(o + 22u);
-        ux = node_sym(o + 10u) * rx + transpose(qmx) * rm;
-        um = qmx * rx + node_sym(o + 16u) * rm;
-        node_set_v3(o + 31u, ux);
-        node_set_v3(o + 34u, um);
+      node_set_v3(o + 31u, zx);
+      node_set_v3(o + 34u, zm);
+      pxx = node_sym(o + 10u);
+      pmm = node_sym(o + 16u);
+      pmx = node_m3(o + 22u);
+      g = s_blk[o + 9u];
+    }
+  } else if (lower) {
+    // w_v = r_v - K(v, v+1) E_{v+1}^-1 w_{v+1}, v = n - 1 .. k (node k's part to the exchange, as solve_lower_half)
+    mat3 qxx = mat3(0.0), qmm = mat3(0.0), qmx = mat3(0.0);
+    vec3 wx = vec3(0.0), wm = vec3(0.0);
+    for (uint v = n; v-- > k;) {
+      uint o = base + kNodeFloats * v;
+      mat3 gpn = v + 1u < n ? node_m3(base + kNodeFloats * min(v + 1u, n - 1u)) : mat3(0.0);  // Gp_{v+1}
+      float g = s_blk[o + 9u];
+      vec3 yx = qxx * wx + transpose(qmx) * wm, ym = qmx * wx + qmm * wm;
+      if (v == k) {
+        node_set_v3(e + 21u, transpose(gpn) * ym);
+        node_set_v3(e + 24u, g * yx);
+        break;
       }
+      wx = node_v3(o + 31u) - transpose(gpn) * ym;
+      wm = node_v3(o + 34u) - g * yx;
+      node_set_v3(o + 31u, wx);
+      node_set_v3(o + 34u, wm);
+      qxx = node_sym(o + 10u);
+      qmm = node_sym(o + 16u);
+      qmx = node_m3(o + 22u);
     }
   }
+  barrier();
+  if (upper || lower) conservative_back_substitution(base, n, k, upper);
 }
 
 // The conservative local shape (the reference's local_shape_conservative, LengthModel::kConservative): the compliant
@@ -414,20 +477,58 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
     // 3. This node: constraint v's gradient blocks on the free vertices (x_{v-1}: J, x_v: -I - J, x_{v+1}: I), the
     // vertex's M = 1 / w, the constraint's compliance. A constraint that is not there (the root, the tip, no free
     // vertex) is mu_v = 0: compliance 1, no coupling, no right-hand side.
+    const mat3 gp_self = live && w_prev > 0.0 ? J : mat3(0.0);
+    const float g_self = live && w_next > 0.0 ? 1.0 : 0.0;
+    const float m_self = w_self > 0.0 ? 1.0 / w_self : 1.0;
+    const float a_self = live ? at / (1.0 + gm) : 1.0;
+    const mat3 gs_self = live && w_self > 0.0 ? -I3 - J : mat3(0.0);
     if (v < N) {
-      node_set_m3(node, live && w_prev > 0.0 ? J : mat3(0.0));
-      s_blk[node + 9u] = live && w_next > 0.0 ? 1.0 : 0.0;
-      s_blk[node + 10u] = w_self > 0.0 ? 1.0 / w_self : 1.0;
-      s_blk[node + 11u] = live ? at / (1.0 + gm) : 1.0;
-      node_set_m3(node + 12u, live && w_self > 0.0 ? -I3 - J : mat3(0.0));
+      node_set_m3(node, gp_self);
+      s_blk[node + 9u] = g_self;
+      s_blk[node + 10u] = m_self;
+      s_blk[node + 11u] = a_self;
+      node_set_m3(node + 12u, gs_self);
       node_set_v3(node + 21u, rhs);
     }
     barrier();
     conservative_solve(N);
     barrier();
-    // 4. The move and the multiplier come out of the solve: dx_v = W G^T dlambda, mu_v = -dlambda_v.
-    vec3 dx = v < N ? node_v3(node + 31u) : vec3(0.0);
-    vec3 dl = row && apply ? -node_v3(node + 34u) : vec3(0.0);
+    vec3 dx = vec3(0.0), mu = vec3(0.0);
+    if (v < N) {
+      dx = node_v3(node + 31u);
+      mu = node_v3(node + 34u);
+    }
+    // 4. Below kConservativeRefineBelowHz (sim/fused.hpp, TVK_FEATURE_REFINE) one step of iterative refinement: the
+    // system's residual for the solution, each lane its node's (its own blocks from registers, its neighbours'
+    // solution by the exchange and their couplings from their nodes' floats 0..9, which the solve leaves as written),
+    // solved with the same factor and added. The factorisation in float loses digits on stiff strands, the more the
+    // longer the step: at 60 Hz with 1 iteration the stiff strands, tight curls, extreme wind and strands pinned at
+    // both ends missed the 1e-5 step-error bar on lavapipe (1.0e-5, 4.7e-5, 2.2e-5, 6.3e-5); with this solve made in
+    // double (a diagnostic build) they read 1.2e-7, 2.0e-7, 1.6e-6 and 8.5e-8, and with the refinement in float
+    // 1.4e-7, 2.2e-7, 2.3e-6 and 1.6e-7: the digits were the factorisation's.
+    if (TVK_HAS(TVK_FEATURE_REFINE)) {
+      lanes_put(v, vec4(dx, 0.0), vec4(mu, 0.0), vec4(0.0));
+      vec3 dx_before = lanes_get0(lane_before(v)).xyz, mu_before = lanes_get1(lane_before(v)).xyz;
+      vec3 dx_after = lanes_get0(lane_after(v)).xyz, mu_after = lanes_get1(lane_after(v)).xyz;
+      if (v < N) {
+        // (indices clamped into the strand: a select may read both sides)
+        float g_before = v >= 1u ? s_blk[node - kNodeFloats * min(v, 1u) + 9u] : 0.0;
+        mat3 gp_after = v + 1u < N ? node_m3(node + (v + 1u < N ? kNodeFloats : 0u)) : mat3(0.0);
+        vec3 rx = -(m_self * dx + transpose(gs_self) * mu + g_before * mu_before + transpose(gp_after) * mu_after);
+        vec3 rm = rhs - (gs_self * dx - a_self * mu + gp_self * dx_before + g_self * dx_after);
+        node_set_v3(node + 31u, rx);
+        node_set_v3(node + 34u, rm);
+      }
+      barrier();
+      conservative_resolve(N);
+      barrier();
+      if (v < N) {
+        dx += node_v3(node + 31u);
+        mu += node_v3(node + 34u);
+      }
+    }
+    // 5. The move and the multiplier come out of the solve: dx_v = W G^T dlambda, mu_v = -dlambda_v.
+    vec3 dl = row && apply ? -mu : vec3(0.0);
     // This node is read here before this lane writes it again; the solver's next writes follow two barriers. The
     // root moves too where it is free (no pinned vertex: the first constraint's reaction on its frame edge reaches it).
     if (v < N && w_self > 0.0 && apply) L_pos = vec4(L_pos.xyz + dx, L_pos.w);

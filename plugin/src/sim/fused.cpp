@@ -198,14 +198,15 @@ uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size
   return slots;
 }
 
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative) {
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative, bool refine) {
   PassUse use = frame_pass_use(terms, false);
   use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
   use.features |= kLanesVariantBit;
   if (subgroup) use.features |= kSharedVariantBit;  // keeps the two lane variants' pipelines apart
   if (conservative) use.features |= kFeatureConservative;
-  use.name = std::string(subgroup ? "frame(lanes,subgroup" : "frame(lanes") + (conservative ? ",conservative)" : ")") +
-             use.name.substr(5);
+  if (conservative && refine) use.features |= kFeatureRefine;
+  use.name = std::string(subgroup ? "frame(lanes,subgroup" : "frame(lanes") +
+             (conservative ? (refine ? ",conservative,refined)" : ",conservative)") : ")") + use.name.substr(5);
   return use;
 }
 

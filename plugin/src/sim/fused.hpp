@@ -61,7 +61,15 @@ bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bo
 uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size, uint32_t max_invocations,
                             uint32_t max_shared_bytes);
 // conservative: the conservative local shape (kFeatureConservative, its own pipelines), else the compliant model's.
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative);
+// refine (with conservative): its shape solve refined once (kFeatureRefine, lanes_compliant.glsl), which an instance
+// takes below kConservativeRefineBelowHz.
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative, bool refine);
+// The step rate below which the conservative local shape's solve is refined once. The float factorisation of a stiff
+// strand's system loses more digits the longer the step (its compliance goes as the step squared): at 60 Hz and 1
+// iteration five of the hard cases missed the 1e-5 step-error bar without the refinement, 14 of 15 pass with it
+// (lavapipe and an NVIDIA H100); at 120 Hz and above the plain solve passes the same 14 (240 Hz: all 15), and the
+// refinement would cost 26-46 % of the frame (NVIDIA H100, docs/accuracy.md, "The shape solve refined").
+constexpr float kConservativeRefineBelowHz = 120.0f;
 bool is_frame_lanes(const PassInfo* info);
 
 // The follow-the-leader model's run kernel (frame_runs.glsl): each lane holds a run of 4 or 8 consecutive vertices

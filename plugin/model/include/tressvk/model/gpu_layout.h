@@ -49,6 +49,7 @@
 #define TVK_FEATURE_VSP 64u          // fused frame kernel only: run velocity shock propagation
 #define TVK_FEATURE_LOCAL_SHAPE 128u // fused frame kernel only: run local shape constraints
 #define TVK_FEATURE_CONSERVATIVE 256u // lane kernel only: the conservative local shape (TRESSVK_SIM_MODEL=conservative)
+#define TVK_FEATURE_REFINE 512u      // lane kernel only: the conservative shape solve refined once (slow step rates)
 
 // ---- simulation: per-frame data ----------------------------------------------------------------------------
 #define TVK_SKIN_VEC4 9u        // vec4 per (substep, bone) in the Skin buffer
