@@ -346,31 +346,41 @@ void conservative_back_substitution(uint base, uint n, uint k, bool upper) {
   }
 }
 
+// Which half of which strand's system this invocation solves (kLowerFirst, frame_lanes.glsl): base is the strand's
+// first float, neither half for every other invocation.
+struct SolverRole {
+  bool upper, lower;
+  uint base;
+};
+SolverRole solver_role() {
+  const uint li = gl_LocalInvocationIndex;
+  SolverRole r;
+  r.upper = li < kSlots;
+  r.lower = li >= kLowerFirst && li < kLowerFirst + kSlots;
+  r.base = kSlotFloats * (r.upper ? li : li - kLowerFirst);
+  return r;
+}
+
 // The workgroup's systems, one a strand (strands of at most 2 k + 2 nodes); called by every invocation (its barrier).
 // The solution u_v = (dx_v, mu_v) ends in node v's floats 31..36.
 void conservative_solve(uint n) {
-  const uint li = gl_LocalInvocationIndex;
-  const bool upper = li < kSlots;
-  const bool lower = li >= kLowerFirst && li < kLowerFirst + kSlots;
-  const uint base = kSlotFloats * (upper ? li : li - kLowerFirst);
+  const SolverRole r = solver_role();
   const uint k = n / 2u;
-  if (upper) solve_upper_half(base, n, k);
-  else if (lower) solve_lower_half(base, n, k);
+  if (r.upper) solve_upper_half(r.base, n, k);
+  else if (r.lower) solve_lower_half(r.base, n, k);
   barrier();
-  if (upper || lower) conservative_back_substitution(base, n, k, upper);
+  if (r.upper || r.lower) conservative_back_substitution(r.base, n, k, r.upper);
 }
 
 // The same systems solved again with the factor conservative_solve left (D_v^-1 in floats 10..30, node k's two
 // parts, the couplings in floats 0..9), for a right-hand side with both parts, (x, multiplier), in every node's
-// floats 31..36; the solution ends there. No pivot is inverted but node k's: a fraction of the solve's cost.
+// floats 31..36; the solution ends there. No pivot is inverted but node k's.
 void conservative_resolve(uint n) {
-  const uint li = gl_LocalInvocationIndex;
-  const bool upper = li < kSlots;
-  const bool lower = li >= kLowerFirst && li < kLowerFirst + kSlots;
-  const uint base = kSlotFloats * (upper ? li : li - kLowerFirst);
+  const SolverRole r = solver_role();
+  const uint base = r.base;
   const uint k = n / 2u;
   const uint e = base + kNodeFloats * n;
-  if (upper) {
+  if (r.upper) {
     // z_v = r_v - K(v, v-1) D_{v-1}^-1 z_{v-1}, v = 0 .. k (node k's part to the exchange, as solve_upper_half)
     mat3 pxx = mat3(0.0), pmm = mat3(0.0), pmx = mat3(0.0);
     vec3 zx = vec3(0.0), zm = vec3(0.0);
@@ -392,7 +402,7 @@ void conservative_resolve(uint n) {
       pmx = node_m3(o + 22u);
       g = s_blk[o + 9u];
     }
-  } else if (lower) {
+  } else if (r.lower) {
     // w_v = r_v - K(v, v+1) E_{v+1}^-1 w_{v+1}, v = n - 1 .. k (node k's part to the exchange, as solve_lower_half)
     mat3 qxx = mat3(0.0), qmm = mat3(0.0), qmx = mat3(0.0);
     vec3 wx = vec3(0.0), wm = vec3(0.0);
@@ -416,7 +426,7 @@ void conservative_resolve(uint n) {
     }
   }
   barrier();
-  if (upper || lower) conservative_back_substitution(base, n, k, upper);
+  if (r.upper || r.lower) conservative_back_substitution(base, n, k, r.upper);
 }
 
 // The conservative local shape (the reference's local_shape_conservative, LengthModel::kConservative): the compliant
