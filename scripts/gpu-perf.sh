@@ -9,7 +9,7 @@
 # BINDIR holds tressvk-bench, tressvk-bake and libtressvk.so.0 (default: build/portable). DATADIR holds
 # tressfx/ratboy/Ratboy_mohawk.tfx (+ .tfxbone) for the Ratboy row (default: data/ beside the repository).
 # Writes one JSON file per run, table.md (the table) and sweep.md. Single tables instead: MODELS=1, SLEEP=1,
-# CROWD=1, CROWD_RULE=1, CHOICE=1, SPLIT=1, WAVES=1, TERMS=1, FRAME_WG=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
+# CROWD=1, CROWD_RULE=1, CHOICE=1, SPLIT=1, WAVES=1, REFINE=1, TERMS=1, FRAME_WG=1, RUNS=1 (each described where it runs). BUDGET (seconds, default 400) stops
 # starting new sweep runs once spent, so that the whole script fits a bounded GPU session; rows not run are absent.
 set -euo pipefail
 OUT=${1:?usage: gpu-perf.sh OUTDIR [BINDIR [DATADIR]]}
@@ -203,6 +203,27 @@ if [ "${WAVES:-0}" = 1 ]; then
     done
     for g in 660 1320 2640 6600; do perf "waves-ftl-$g" default --builtin curly --guides "$g" $C; done
   } | tee "$OUT/waves.md"
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
+# REFINE=1: only "The shape solve refined below 120 Hz" (docs/accuracy.md): the conservative model with 1 local
+# iteration at 60 Hz (its solve refined) and 120 Hz (not) on Ratboy + 2 follows, curly 1 M and 4 M guide vertices
+# and 1,320 curly guides (one wave on a 132-SM GPU), then its hard cases at 60 Hz, then stop. The table's "before"
+# column is the same rows on a build before the refinement.
+if [ "${REFINE:-0}" = 1 ]; then
+  C="--scene shake --frames 200 --warmup 60 --error-frames 1 --model conservative --local-iterations 1"
+  {
+    table_header
+    for rate in 60 120; do
+      [ -f "$MOHAWK" ] && perf "refine-ratboy-$rate" default --asset "$MOHAWK" --step-rate "$rate" $C
+      perf "refine-curly1M-$rate" default --builtin curly --guides 32768 --step-rate "$rate" $C
+      perf "refine-curly4M-$rate" default --builtin curly --guides 131072 --step-rate "$rate" $C
+      perf "refine-curly1320-$rate" default --builtin curly --guides 1320 --step-rate "$rate" $C
+    done
+  } | tee "$OUT/refine.md"
+  "$BENCH" hardcases --model conservative --converged-rate 960 --step-rate 60 --local-iterations 1 \
+    --json "$OUT/refine-hardcases.json" | tee "$OUT/refine-hardcases.md" || true
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi
