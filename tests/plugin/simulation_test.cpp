@@ -343,6 +343,7 @@ TEST_CASE("a crowd takes the one-thread kernel at any step rate and keeps every 
   test::AssetHandle owned(test::load_asset(ctx.get(), hair));
   const std::vector<TvkSimParams> params = default_params(hair);
   TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
+  settings.model = TVK_SIM_MODEL_FOLLOW_THE_LEADER;  // the crowd rule is this model's, whatever TRESSVK_SIM_MODEL says
   std::vector<std::unique_ptr<test::GpuInstance>> crowd;
   std::vector<test::GpuInstance*> members;
   for (size_t i = 0; i < kCrowd; ++i) {
