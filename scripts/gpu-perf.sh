@@ -208,22 +208,28 @@ if [ "${WAVES:-0}" = 1 ]; then
 fi
 
 # REFINE=1: only "The shape solve refined below 120 Hz" (docs/accuracy.md): the conservative model with 1 local
-# iteration at 60 Hz (its solve refined) and 120 Hz (not) on Ratboy + 2 follows, curly 1 M and 4 M guide vertices
-# and 1,320 curly guides (one wave on a 132-SM GPU), then its hard cases at 60 Hz, then stop. The table's "before"
-# column is the same rows on a build before the refinement.
+# iteration at 30 Hz (its solve refined three times; then once, TRESSVK_SIM_REFINE=1, as before), 60 Hz (once) and
+# 120 Hz (not) on Ratboy + 2 follows, curly 1 M and 4 M guide vertices and 1,320 curly guides (one wave on a 132-SM
+# GPU), then its hard cases at 60 and 30 Hz, then stop. The table's "before" column is the same rows on a build before
+# the refinement.
 if [ "${REFINE:-0}" = 1 ]; then
-  C="--scene shake --frames 200 --warmup 60 --error-frames 1 --model conservative --local-iterations 1"
+  # (two error frames: at 30 Hz one frame in two of `shake`'s 60 steps)
+  C="--scene shake --frames 200 --warmup 60 --error-frames 2 --model conservative --local-iterations 1"
+  refine_rows() {  # name suffix, step rate
+    [ -f "$MOHAWK" ] && perf "refine-ratboy-$1" default --asset "$MOHAWK" --step-rate "$2" $C
+    perf "refine-curly1M-$1" default --builtin curly --guides 32768 --step-rate "$2" $C
+    perf "refine-curly4M-$1" default --builtin curly --guides 131072 --step-rate "$2" $C
+    perf "refine-curly1320-$1" default --builtin curly --guides 1320 --step-rate "$2" $C
+  }
   {
     table_header
-    for rate in 60 120; do
-      [ -f "$MOHAWK" ] && perf "refine-ratboy-$rate" default --asset "$MOHAWK" --step-rate "$rate" $C
-      perf "refine-curly1M-$rate" default --builtin curly --guides 32768 --step-rate "$rate" $C
-      perf "refine-curly4M-$rate" default --builtin curly --guides 131072 --step-rate "$rate" $C
-      perf "refine-curly1320-$rate" default --builtin curly --guides 1320 --step-rate "$rate" $C
-    done
+    for rate in 30 60 120; do refine_rows "$rate" "$rate"; done
+    TRESSVK_SIM_REFINE=1 refine_rows 30-once 30
   } | tee "$OUT/refine.md"
-  "$BENCH" hardcases --model conservative --converged-rate 960 --step-rate 60 --local-iterations 1 \
-    --json "$OUT/refine-hardcases.json" | tee "$OUT/refine-hardcases.md" || true
+  for rate in 60 30; do
+    "$BENCH" hardcases --model conservative --converged-rate 960 --step-rate "$rate" --local-iterations 1 \
+      --json "$OUT/refine-hardcases-$rate.json" | tee "$OUT/refine-hardcases-$rate.md" || true
+  done
   echo "done in $SECONDS s: $OUT"
   exit 0
 fi

@@ -198,16 +198,30 @@ uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size
   return slots;
 }
 
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative, bool refine) {
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative, uint32_t refinements) {
+  const bool refine = conservative && refinements > 0;
   PassUse use = frame_pass_use(terms, false);
   use.info = subgroup ? &kFrameLanesSubgroup : &kFrameLanes;
   use.features |= kLanesVariantBit;
   if (subgroup) use.features |= kSharedVariantBit;  // keeps the two lane variants' pipelines apart
   if (conservative) use.features |= kFeatureConservative;
-  if (conservative && refine) use.features |= kFeatureRefine;
+  if (refine) use.features |= kFeatureRefine;
+  if (refine && refinements > 1) use.features |= kFeatureRefineThrice;
   use.name = std::string(subgroup ? "frame(lanes,subgroup" : "frame(lanes") +
-             (conservative ? (refine ? ",conservative,refined)" : ",conservative)") : ")") + use.name.substr(5);
+             (conservative ? (refine ? (refinements > 1 ? ",conservative,refined thrice)" : ",conservative,refined)")
+                                     : ",conservative)")
+                           : ")") +
+             use.name.substr(5);
   return use;
+}
+
+uint32_t conservative_refinements_for(float step_rate) {
+  static const int forced = [] {
+    const char* v = std::getenv("TRESSVK_SIM_REFINE");
+    if (v && (std::strcmp(v, "0") == 0 || std::strcmp(v, "1") == 0 || std::strcmp(v, "3") == 0)) return v[0] - '0';
+    return -1;
+  }();
+  return forced >= 0 ? static_cast<uint32_t>(forced) : conservative_refinements(step_rate);
 }
 
 uint32_t run_length_from_environment() {

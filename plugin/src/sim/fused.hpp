@@ -61,15 +61,32 @@ bool lanes_fit_subgroup(uint32_t vertices_per_strand, uint32_t subgroup_size, bo
 uint32_t conservative_slots(uint32_t vertices_per_strand, uint32_t subgroup_size, uint32_t max_invocations,
                             uint32_t max_shared_bytes);
 // conservative: the conservative local shape (kFeatureConservative, its own pipelines), else the compliant model's.
-// refine (with conservative): its shape solve refined once (kFeatureRefine, lanes_compliant.glsl), which an instance
-// takes below kConservativeRefineBelowHz.
-PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative, bool refine);
+// refinements (with conservative): its shape solve refined 0, 1 or 3 times (kFeatureRefine, kFeatureRefineThrice,
+// lanes_compliant.glsl): conservative_refinements.
+PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conservative, uint32_t refinements);
 // The step rate below which the conservative local shape's solve is refined once. The float factorisation of a stiff
 // strand's system loses more digits the longer the step (its compliance goes as the step squared): at 60 Hz and 1
 // iteration five of the hard cases missed the 1e-5 step-error bar without the refinement, 14 of 15 pass with it
 // (lavapipe and an NVIDIA H100); at 120 Hz and above the plain solve passes the same 14 (240 Hz: all 15), and the
 // refinement would cost 26-46 % of the frame (NVIDIA H100, docs/accuracy.md, "The shape solve refined").
 constexpr float kConservativeRefineBelowHz = 120.0f;
+// The step rate below which it is refined three times. Each refinement divides the solve's float error by about
+// (the factor's float error) x (the system's condition), which grows as the step squared: strands pinned at both
+// ends, shaken at 30 Hz steps with 1 iteration (lavapipe), read 9.7e-4 unrefined, 2.2e-4 refined once, 2.9e-5
+// twice, 1.3e-6 three times and 1.9e-7 four times, where at 60 Hz once takes them from 6.3e-5 to 1.6e-7.
+constexpr float kConservativeRefineThriceBelowHz = 60.0f;
+// The slowest step rate at which the conservative local shape is recommended for strands of n vertices: 60 Hz, and
+// 240 Hz for more than 64 vertices. Slower, the hard cases fail (NVIDIA H100 and lavapipe, 1 local iteration: 30 Hz
+// passes 8 of 15; 128-vertex strands miss the step-error bar at 60 and 120 Hz, where the model amplifies a state's
+// rounding), and an instance created or set there gets a warning (docs/accuracy.md, "Which model, at which rate").
+constexpr float conservative_least_rate(uint32_t n) { return n > 64u ? 240.0f : 60.0f; }
+// How many times an instance stepping at step_rate refines the conservative local shape's solve.
+constexpr uint32_t conservative_refinements(float step_rate) {
+  return step_rate < kConservativeRefineThriceBelowHz ? 3u : step_rate < kConservativeRefineBelowHz ? 1u : 0u;
+}
+// The same, unless TRESSVK_SIM_REFINE = "0", "1" or "3" (read once per process) forces the count: a diagnostic, to
+// time and compare the counts on one build.
+uint32_t conservative_refinements_for(float step_rate);
 bool is_frame_lanes(const PassInfo* info);
 
 // The follow-the-leader model's run kernel (frame_runs.glsl): each lane holds a run of 4 or 8 consecutive vertices

@@ -262,13 +262,13 @@ std::vector<PassUse> passes_for_path(const Context& ctx, const TvkInstance_T& in
   if (model::is_compliant_family(strand_model)) {
     const uint32_t n = inst.asset->rest.vertices_per_strand;
     const bool conservative = strand_model == model::StrandModel::kConservative;
-    const bool refine = conservative && inst.settings.time.step_rate < sim::kConservativeRefineBelowHz;
+    const uint32_t refinements = conservative ? sim::conservative_refinements_for(inst.settings.time.step_rate) : 0u;
     return {sim::frame_lanes_pass_use(
         terms,
         sim::lanes_backend_from_environment() == sim::LanesBackend::kAuto &&
             sim::lanes_fit_subgroup(n, ctx.subgroup_size_min, ctx.subgroup_shuffle_compute) &&
             (!conservative || conservative_slots(ctx, n) > 0),
-        conservative, refine)};
+        conservative, refinements)};
   }
   const sim::SimPath path = sim::sim_path_from_environment();
   if (path == sim::SimPath::kPasses) return sim::passes_for(terms);

@@ -50,6 +50,7 @@
 #define TVK_FEATURE_LOCAL_SHAPE 128u // fused frame kernel only: run local shape constraints
 #define TVK_FEATURE_CONSERVATIVE 256u // lane kernel only: the conservative local shape (TRESSVK_SIM_MODEL=conservative)
 #define TVK_FEATURE_REFINE 512u      // lane kernel only: the conservative shape solve refined once (slow step rates)
+#define TVK_FEATURE_REFINE_THRICE 1024u  // with TVK_FEATURE_REFINE: refined three times (the slowest rates)
 
 // ---- simulation: per-frame data ----------------------------------------------------------------------------
 #define TVK_SKIN_VEC4 9u        // vec4 per (substep, bone) in the Skin buffer

@@ -60,6 +60,7 @@ enum Feature : uint32_t {
   kFeatureLocalShape = 128u, // fused frame kernel only: run local shape constraints
   kFeatureConservative = 256u,  // lane kernel only: the conservative local shape
   kFeatureRefine = 512u,        // with kFeatureConservative: its shape solve refined once (sim/fused.hpp)
+  kFeatureRefineThrice = 1024u,  // with kFeatureRefine: refined three times (sim/fused.hpp)
 };
 
 // Vertex layout of every per-vertex buffer (positions, tangents, the histories, the static rest data): strands in
@@ -157,7 +158,8 @@ static_assert(kFeatureGlobalShape == TVK_FEATURE_GLOBAL_SHAPE && kFeatureWind ==
               kFeatureCollision == TVK_FEATURE_COLLISION && kFeatureSkinning == TVK_FEATURE_SKINNING &&
               kFeatureMaxSpeed == TVK_FEATURE_MAX_SPEED && kFeaturePinnedTips == TVK_FEATURE_PINNED_TIPS &&
               kFeatureVsp == TVK_FEATURE_VSP && kFeatureLocalShape == TVK_FEATURE_LOCAL_SHAPE &&
-              kFeatureConservative == TVK_FEATURE_CONSERVATIVE && kFeatureRefine == TVK_FEATURE_REFINE);
+              kFeatureConservative == TVK_FEATURE_CONSERVATIVE && kFeatureRefine == TVK_FEATURE_REFINE &&
+              kFeatureRefineThrice == TVK_FEATURE_REFINE_THRICE);
 static_assert(vertex_index(37, 5, 9) == TVK_VERTEX_INDEX(37u, 5u, 9u));
 static_assert(kStepReset == TVK_STEP_RESET && kStepMoveState == TVK_STEP_MOVE_STATE &&
               kSkinVec4PerBone == TVK_SKIN_VEC4 && kMaxCapsules == TVK_STEP_MAX_CAPSULES &&
