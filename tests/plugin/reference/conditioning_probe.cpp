@@ -5,8 +5,10 @@
 // Diagnostic only: usage conditioning_probe (FILE.tfx [FILE.tfxbone] | straight|curly|long128) [frames] [scenes...]
 // Environment: PROBE_PASSES=1 replays the worst frame pass by pass (PROBE_GUIDE=g: show guide g's segments);
 // PROBE_DETAIL=1 shows the worst strand; PROBE_NOCAPS=1 drops capsules; PROBE_VSP, PROBE_LOCAL, PROBE_GLOBAL,
-// PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED, PROBE_LIT (local iterations) override parameters; PROBE_FIRST=1 probes the
-// first frame too (below).
+// PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED, PROBE_LIT (local iterations), PROBE_DAMPING override parameters; PROBE_FIRST=1
+// probes the first frame too (below); PROBE_PIN_TIPS=1 pins every other guide's tip too (TressFX 3's
+// bothEndsImmovable, as the simulation tests' strands pinned at both ends); PROBE_GUIDES=G builds G guides;
+// PROBE_RESET_ULP=S moves the first frame's reset state by S ulps of each simulation-space coordinate instead.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -39,6 +41,7 @@ TvkSimParams probe_params() {
   if (const char* e = std::getenv("PROBE_VSP_THRESHOLD")) p.vsp_threshold = std::strtof(e, nullptr);
   if (const char* e = std::getenv("PROBE_MAX_SPEED")) p.max_speed = std::strtof(e, nullptr);
   if (const char* e = std::getenv("PROBE_LIT")) p.local_iterations = static_cast<uint32_t>(std::atoi(e));
+  if (const char* e = std::getenv("PROBE_DAMPING")) p.damping = std::strtof(e, nullptr);
   return p;
 }
 }  // namespace
@@ -61,7 +64,13 @@ int main(int argc, char** argv) {
     options.follow_per_guide = 2;
     hair = tressvk::baker::bake(raw, options);
   } else {
-    hair = groom(src, src == "long128" ? 16 : 32, src == "straight" ? 1 : 0);
+    const char* guides = std::getenv("PROBE_GUIDES");
+    hair = groom(src, guides ? static_cast<uint32_t>(std::atoi(guides)) : (src == "long128" ? 16u : 32u),
+                 src == "straight" ? 1 : 0);
+  }
+  if (std::getenv("PROBE_PIN_TIPS") != nullptr) {
+    const uint32_t n = hair.vertices_per_strand;
+    for (uint32_t g = 0; g < hair.guide_count(); g += 2) hair.rest_positions[size_t{g} * n + n - 1][3] = 0.0f;
   }
   const uint32_t frames = argc > arg ? static_cast<uint32_t>(std::atoi(argv[arg])) : 40;
   std::vector<std::string> scenes;
@@ -126,7 +135,36 @@ int main(int argc, char** argv) {
         b.set_state(pj, qj, rj);
       }
       a.advance(frame);
-      b.advance(frame);
+      if (f == 0 && std::getenv("PROBE_RESET_ULP") != nullptr) {
+        // The first frame with the reset state rounded as the GPU computes it (one ulp of each simulation-space
+        // coordinate, the same in the histories), the rest of the frame's steps after it.
+        FramePlan plan = b.planner().plan(frame);
+        FramePlan placed;
+        placed.steps.push_back(plan.steps.front());
+        b.simulate(placed);
+        // Each vertex moved with its histories by one offset (the reset step's passes may have moved the position
+        // from its histories already: a capsule's push), so that only the rounding is new.
+        std::vector<Vec3> pj(b.positions().begin(), b.positions().end());
+        std::vector<Vec3> qj(b.prev_positions().begin(), b.prev_positions().end());
+        std::vector<Vec3> rj(b.prevprev_positions().begin(), b.prevprev_positions().end());
+        const double scale = std::strtod(std::getenv("PROBE_RESET_ULP"), nullptr);  // of one ulp (1: one ulp)
+        for (size_t i = 0; i < pj.size(); ++i)
+          for (int c = 0; c < 3; ++c) {
+            const float x = static_cast<float>(pj[i][c]);
+            const double d = ((rng() & 1u) ? scale : -scale) *
+                             (static_cast<double>(std::nextafter(x, INFINITY)) - static_cast<double>(x));
+            pj[i][c] += d;
+            if (i < qj.size()) {
+              qj[i][c] += d;
+              rj[i][c] += d;
+            }
+          }
+        b.set_state(std::span<const Vec3>(pj), std::span<const Vec3>(qj), std::span<const Vec3>(rj));
+        plan.steps.erase(plan.steps.begin());
+        b.simulate(plan);
+      } else {
+        b.advance(frame);
+      }
       const auto pa = a.positions(), pb = b.positions();
       const bool anchor_probe = std::getenv("PROBE_ANCHOR") != nullptr;
       const size_t n_per = a.rest().vertices_per_strand, g_count = a.rest().guide_count;
