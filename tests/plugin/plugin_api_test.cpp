@@ -39,6 +39,54 @@ void keep_warnings(TvkMessageSeverity severity, const char* message, void*) {
 }
 }  // namespace
 
+// The conservative model below the step rate it is recommended at for the asset's strands (60 Hz; 240 Hz for more
+// than 64 vertices: sim::conservative_least_rate) warns the host once, at creation or when the settings change to it;
+// follow-the-leader, and the conservative model at its rates, do not.
+TEST_CASE("the conservative model below its recommended step rate warns the host", "[plugin]") {
+  TvkContextCreateInfo info = host::context_info(test::device());
+  info.message_callback = keep_warnings;
+  TvkContext raw = nullptr;
+  REQUIRE(tressvk_create_context(&info, &raw) == TVK_SUCCESS);
+  test::PluginContext ctx(raw);
+  TvkAsset curly = test::load_asset(ctx.get(), test::small_groom("curly", 4));
+  TvkAsset long128 = test::load_asset(ctx.get(), test::small_groom("long128", 4));
+  const auto create = [&](TvkAsset asset, TvkSimModel model, float rate) {
+    TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+    settings.model = model;
+    settings.time.step_rate = rate;
+    TvkInstanceCreateInfo ici{};
+    ici.struct_size = sizeof(ici);
+    ici.asset = asset;
+    ici.settings = &settings;
+    TvkInstance inst = nullptr;
+    REQUIRE(tressvk_create_instance(ctx.get(), &ici, &inst) == TVK_SUCCESS);
+    return inst;
+  };
+  g_warnings.clear();
+  TvkInstance ftl = create(curly, TVK_SIM_MODEL_FOLLOW_THE_LEADER, 30.0f);
+  TvkInstance at60 = create(curly, TVK_SIM_MODEL_CONSERVATIVE, 60.0f);
+  TvkInstance long240 = create(long128, TVK_SIM_MODEL_CONSERVATIVE, 240.0f);
+  CHECK(g_warnings.empty());
+  TvkInstance at30 = create(curly, TVK_SIM_MODEL_CONSERVATIVE, 30.0f);
+  REQUIRE(g_warnings.size() == 1);
+  INFO(g_warnings.back());
+  CHECK(g_warnings.back().find("tressvk_create_instance: time.step_rate 30 Hz is below 60 Hz") != std::string::npos);
+  CHECK(g_warnings.back().find("strands of 32 vertices") != std::string::npos);
+  // Set to 120 Hz on 128-vertex strands: warned once, not again for the same settings.
+  TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  settings.model = TVK_SIM_MODEL_CONSERVATIVE;
+  settings.time.step_rate = 120.0f;
+  REQUIRE(tressvk_set_sim_settings(long240, &settings) == TVK_SUCCESS);
+  REQUIRE(g_warnings.size() == 2);
+  INFO(g_warnings.back());
+  CHECK(g_warnings.back().find("tressvk_set_sim_settings: time.step_rate 120 Hz is below 240 Hz") != std::string::npos);
+  REQUIRE(tressvk_set_sim_settings(long240, &settings) == TVK_SUCCESS);
+  CHECK(g_warnings.size() == 2);
+  for (TvkInstance i : {ftl, at60, long240, at30}) tressvk_destroy_instance(i);
+  tressvk_destroy_asset(curly);
+  tressvk_destroy_asset(long128);
+}
+
 // Strands with sub-micrometre segments (hard case 8's groom) are respaced on load (model::kRespaceBelowRel), and the
 // host is told; a baked-like groom loads without that warning.
 TEST_CASE("an asset with sub-micrometre segments loads with a warning that its strands were respaced", "[plugin]") {

@@ -172,7 +172,7 @@ typedef enum TvkSimModel {
                                           rest comes to rest; recommended at 120 Hz with 1 local iteration for
                                           strands of up to 64 vertices (60 Hz for less time, where its solve is
                                           refined: the same hard cases pass, with more error in violent motion),
-                                          240 Hz for longer ones */
+                                          240 Hz for longer ones; below those rates an instance gets a warning */
   TVK_SIM_MODEL_COMPLIANT = 3,         /* the conservative model's constraints with targets held while it solves:
                                           faster, but curly hair never comes to rest */
   TVK_SIM_MODEL_MAX_ENUM = 0x7FFFFFFF  /* keeps the enum 32 bits wide; not a model */

@@ -1,5 +1,6 @@
 // Instances: a placed asset with its own dynamic state, parameters, per-frame parameter ring and descriptor set.
 #include "core/objects.hpp"
+#include "sim/fused.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -31,6 +32,20 @@ void destroy_instance_now(TvkInstance_T* inst, bool deferred) {
   }
   if (inst->asset && inst->holds_asset) inst->asset->release();
   delete inst;
+}
+
+// Tells the host where the conservative model steps slower than it is recommended at for the asset's strands
+// (sim::conservative_least_rate): there it may not follow its reference. A warning, not a refusal.
+void warn_if_below_recommended_rate(Context& ctx, const TvkInstance_T& inst, const char* call) {
+  if (tressvk::model::resolve_model(inst.settings.model) != tressvk::model::StrandModel::kConservative) return;
+  const uint32_t n = inst.asset->rest.vertices_per_strand;
+  const float least = tressvk::sim::conservative_least_rate(n);
+  if (!(inst.settings.time.step_rate < least)) return;
+  ctx.message(TVK_MESSAGE_WARNING,
+              "%s: time.step_rate %g Hz is below %g Hz, the slowest the conservative model is recommended at for "
+              "strands of %u vertices; it may not follow its reference there (docs/accuracy.md, \"Which model, at "
+              "which rate\")",
+              call, static_cast<double>(inst.settings.time.step_rate), static_cast<double>(least), n);
 }
 
 // Owns an instance under construction: a failure anywhere frees what was made, at once (nothing was recorded).
@@ -165,6 +180,7 @@ TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInf
                                                                         info->asset->rest.asset_bone_count);
     inst->planner->set_bone_source(info->asset->rest.bone_source);
     if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) return r;
+    warn_if_below_recommended_rate(ctx, *inst, kCall);
     // Handed to the host: only now does the instance count as a user of the asset.
     ++info->asset->users;
     inst->holds_asset = true;
@@ -200,7 +216,10 @@ TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* s
   return tressvk::guarded(ctx, "tressvk_set_sim_settings", [&]() -> TvkResult {
     if (!settings) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_settings: settings is NULL");
     instance->planner->set_settings(*settings);  // throws naming the field; the settings stay as they were
+    const bool changed = settings->model != instance->settings.model ||
+                         settings->time.step_rate != instance->settings.time.step_rate;
     instance->settings = *settings;
+    if (changed) warn_if_below_recommended_rate(ctx, *instance, "tressvk_set_sim_settings");
     return TVK_SUCCESS;
   });
 }
