@@ -37,17 +37,22 @@ std::vector<std::string> g_warnings;
 void keep_warnings(TvkMessageSeverity severity, const char* message, void*) {
   if (severity == TVK_MESSAGE_WARNING) g_warnings.emplace_back(message);
 }
+// A context whose warnings land in g_warnings (cleared).
+test::PluginContext context_keeping_warnings() {
+  TvkContextCreateInfo info = host::context_info(test::device());
+  info.message_callback = keep_warnings;
+  TvkContext raw = nullptr;
+  REQUIRE(tressvk_create_context(&info, &raw) == TVK_SUCCESS);
+  g_warnings.clear();
+  return test::PluginContext(raw);
+}
 }  // namespace
 
 // The conservative model below the step rate it is recommended at for the asset's strands (60 Hz; 240 Hz for more
 // than 64 vertices: sim::conservative_least_rate) warns the host once, at creation or when the settings change to it;
 // follow-the-leader, and the conservative model at its rates, do not.
 TEST_CASE("the conservative model below its recommended step rate warns the host", "[plugin]") {
-  TvkContextCreateInfo info = host::context_info(test::device());
-  info.message_callback = keep_warnings;
-  TvkContext raw = nullptr;
-  REQUIRE(tressvk_create_context(&info, &raw) == TVK_SUCCESS);
-  test::PluginContext ctx(raw);
+  test::PluginContext ctx = context_keeping_warnings();
   TvkAsset curly = test::load_asset(ctx.get(), test::small_groom("curly", 4));
   TvkAsset long128 = test::load_asset(ctx.get(), test::small_groom("long128", 4));
   const auto create = [&](TvkAsset asset, TvkSimModel model, float rate) {
@@ -90,12 +95,7 @@ TEST_CASE("the conservative model below its recommended step rate warns the host
 // Strands with sub-micrometre segments (hard case 8's groom) are respaced on load (model::kRespaceBelowRel), and the
 // host is told; a baked-like groom loads without that warning.
 TEST_CASE("an asset with sub-micrometre segments loads with a warning that its strands were respaced", "[plugin]") {
-  TvkContextCreateInfo info = host::context_info(test::device());
-  info.message_callback = keep_warnings;
-  TvkContext raw = nullptr;
-  REQUIRE(tressvk_create_context(&info, &raw) == TVK_SUCCESS);
-  test::PluginContext ctx(raw);
-  g_warnings.clear();
+  test::PluginContext ctx = context_keeping_warnings();
   TvkAsset plain = test::load_asset(ctx.get(), test::small_groom("straight", 8));
   CHECK(g_warnings.empty());
   TvkAsset dup =
