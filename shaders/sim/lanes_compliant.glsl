@@ -508,16 +508,16 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
       dx = node_v3(node + 31u);
       mu = node_v3(node + 34u);
     }
-    // 4. Below kConservativeRefineBelowHz (sim/fused.hpp, TVK_FEATURE_REFINE) one step of iterative refinement: the
-    // system's residual for the solution, each lane its node's (its own blocks from registers, its neighbours'
-    // solution by the exchange and their couplings from their nodes' floats 0..9, which the solve leaves as written),
-    // solved with the same factor and added. The factorisation in float loses digits on stiff strands, the more the
+    // 4. Below kConservativeRefineBelowHz (sim/fused.hpp, TVK_FEATURE_REFINE) iterative refinement, once (three times
+    // below kConservativeRefineThriceBelowHz, TVK_FEATURE_REFINE_THRICE): the system's residual for the solution, each
+    // lane its node's (its own blocks from registers, its neighbours' solution by the exchange and their couplings from
+    // their nodes' floats 0..9, which the solve leaves as written), solved with the same factor and added. The factorisation in float loses digits on stiff strands, the more the
     // longer the step: at 60 Hz with 1 iteration the stiff strands, tight curls, extreme wind and strands pinned at
     // both ends missed the 1e-5 step-error bar on lavapipe (1.0e-5, 4.7e-5, 2.2e-5, 6.3e-5); with this solve made in
     // double (a diagnostic build) they read 1.2e-7, 2.0e-7, 1.6e-6 and 8.5e-8, and with the refinement in float
     // 1.4e-7, 2.2e-7, 2.3e-6 and 1.6e-7: the digits were the factorisation's.
     const uint refinements = TVK_HAS(TVK_FEATURE_REFINE) ? (TVK_HAS(TVK_FEATURE_REFINE_THRICE) ? 3u : 1u) : 0u;
-    for (uint k = 0u; k < refinements; ++k) {
+    for (uint i = 0u; i < refinements; ++i) {
       lanes_put(v, vec4(dx, 0.0), vec4(mu, 0.0), vec4(0.0));
       vec3 dx_before = lanes_get0(lane_before(v)).xyz, mu_before = lanes_get1(lane_before(v)).xyz;
       vec3 dx_after = lanes_get0(lane_after(v)).xyz, mu_after = lanes_get1(lane_after(v)).xyz;

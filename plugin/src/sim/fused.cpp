@@ -207,11 +207,11 @@ PassUse frame_lanes_pass_use(const SceneTerms& terms, bool subgroup, bool conser
   if (conservative) use.features |= kFeatureConservative;
   if (refine) use.features |= kFeatureRefine;
   if (refine && refinements > 1) use.features |= kFeatureRefineThrice;
-  use.name = std::string(subgroup ? "frame(lanes,subgroup" : "frame(lanes") +
-             (conservative ? (refine ? (refinements > 1 ? ",conservative,refined thrice)" : ",conservative,refined)")
-                                     : ",conservative)")
-                           : ")") +
-             use.name.substr(5);
+  const char* model = !conservative             ? ")"
+                      : !refine                 ? ",conservative)"
+                      : refinements > 1         ? ",conservative,refined thrice)"
+                                                : ",conservative,refined)";
+  use.name = std::string(subgroup ? "frame(lanes,subgroup" : "frame(lanes") + model + use.name.substr(5);
   return use;
 }
 
