@@ -8,7 +8,10 @@
 // PROBE_VSP_THRESHOLD, PROBE_MAX_SPEED, PROBE_LIT (local iterations), PROBE_DAMPING override parameters; PROBE_FIRST=1
 // probes the first frame too (below); PROBE_PIN_TIPS=1 pins every other guide's tip too (TressFX 3's
 // bothEndsImmovable, as the simulation tests' strands pinned at both ends); PROBE_GUIDES=G builds G guides;
-// PROBE_RESET_ULP=S moves the first frame's reset state by S ulps of each simulation-space coordinate instead.
+// PROBE_RESET_PRE=S moves the first frame's reset pose by S ulps of each offset from the strand's root before the
+// reset step's passes instead (what the GPU's skinned rest pose carries); PROBE_STEP_ULP=S moves every position by S
+// ulps after each step too (the rounding inside a frame); PROBE_MAX_STEPS caps the steps a frame; PROBE_SEED seeds
+// the ulps' directions.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +33,7 @@ namespace {
 TvkSimSettings probe_settings() {
   TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
   if (const char* e = std::getenv("PROBE_RATE")) s.time.step_rate = std::strtof(e, nullptr);
+  if (const char* e = std::getenv("PROBE_MAX_STEPS")) s.time.max_steps_per_frame = static_cast<uint32_t>(std::atoi(e));
   return s;
 }
 
@@ -90,7 +94,7 @@ int main(int argc, char** argv) {
     Simulator a = make_sim(hair, probe_params(), probe_settings()), b = make_sim(hair_b, probe_params(), probe_settings());
     const SceneGeometry geo = scene_geometry(a.rest());
     const double median = a.median_strand_length();
-    std::mt19937 rng(7);
+    std::mt19937 rng(std::getenv("PROBE_SEED") ? static_cast<unsigned>(std::atoi(std::getenv("PROBE_SEED"))) : 7u);
     double worst = 0;
     uint32_t worst_frame = 0;
     size_t worst_vertex = 0;
@@ -135,33 +139,50 @@ int main(int argc, char** argv) {
         b.set_state(pj, qj, rj);
       }
       a.advance(frame);
-      if (f == 0 && std::getenv("PROBE_RESET_ULP") != nullptr) {
-        // The first frame with the reset state rounded as the GPU computes it (one ulp of each simulation-space
-        // coordinate, the same in the histories), the rest of the frame's steps after it.
+      if (f == 0 && std::getenv("PROBE_RESET_PRE") != nullptr) {
+        // The reset pose's rounding before the reset step's passes (a capsule's push, the length solve): the skinned
+        // rest pose with each offset from its strand's root moved by S float ulps (positions and histories alike), then
+        // the reset step's passes as a plain step from it (no velocity; gravity and the global pull, which a reset
+        // step does not apply, off: 0 reproduces the first simulator's frame), then the frame's other steps.
+        const double scale = std::strtod(std::getenv("PROBE_RESET_PRE"), nullptr);
         FramePlan plan = b.planner().plan(frame);
-        FramePlan placed;
-        placed.steps.push_back(plan.steps.front());
-        b.simulate(placed);
-        // Each vertex moved with its histories by one offset (the reset step's passes may have moved the position
-        // from its histories already: a capsule's push), so that only the rounding is new.
+        b.integrate(plan.steps.front());  // the reset: every vertex at its skinned rest pose
+        const size_t nn = b.rest().vertices_per_strand;
         std::vector<Vec3> pj(b.positions().begin(), b.positions().end());
-        std::vector<Vec3> qj(b.prev_positions().begin(), b.prev_positions().end());
-        std::vector<Vec3> rj(b.prevprev_positions().begin(), b.prevprev_positions().end());
-        const double scale = std::strtod(std::getenv("PROBE_RESET_ULP"), nullptr);  // of one ulp (1: one ulp)
-        for (size_t i = 0; i < pj.size(); ++i)
+        for (size_t i = 0; i < size_t{b.rest().guide_count} * nn; ++i) {
+          const Vec3 root = b.positions()[i / nn * nn];
           for (int c = 0; c < 3; ++c) {
-            const float x = static_cast<float>(pj[i][c]);
-            const double d = ((rng() & 1u) ? scale : -scale) *
-                             (static_cast<double>(std::nextafter(x, INFINITY)) - static_cast<double>(x));
-            pj[i][c] += d;
-            if (i < qj.size()) {
-              qj[i][c] += d;
-              rj[i][c] += d;
+            const float x = static_cast<float>(pj[i][c] - root[c]);
+            const double d = static_cast<double>(std::nextafter(x, INFINITY)) - static_cast<double>(x);
+            pj[i][c] += ((rng() & 1u) ? scale : -scale) * d;
+          }
+        }
+        b.set_state(std::span<const Vec3>(pj), std::span<const Vec3>(pj), std::span<const Vec3>(pj));
+        plan.steps.front().reset = false;
+        plan.steps.front().gravity_h2 = Vec3{};
+        b.simulate(plan);
+      } else if (const char* step_ulp = std::getenv("PROBE_STEP_ULP")) {
+        // Rounding inside the frame too: the second simulator runs the frame's steps one at a time and, after each,
+        // moves every position's offset from its strand's root by S float ulps up or down (a float32 kernel rounds
+        // its state at every step; the histories it keeps are copies of rounded positions).
+        const double scale = std::strtod(step_ulp, nullptr);
+        const FramePlan plan = b.planner().plan(frame);
+        const size_t nn = b.rest().vertices_per_strand;
+        for (size_t k = 0; k < plan.steps.size(); ++k) {
+          FramePlan one;
+          one.steps.push_back(plan.steps[k]);
+          b.simulate(one);  // (and the follow pass after each step: it only reads the guides)
+          std::vector<Vec3> pj(b.positions().begin(), b.positions().end());
+          for (size_t i = 0; i < size_t{b.rest().guide_count} * nn; ++i) {
+            const Vec3 root = b.positions()[i / nn * nn];
+            for (int c = 0; c < 3; ++c) {
+              const float x = static_cast<float>(pj[i][c] - root[c]);
+              const double d = static_cast<double>(std::nextafter(x, INFINITY)) - static_cast<double>(x);
+              pj[i][c] += ((rng() & 1u) ? scale : -scale) * d;
             }
           }
-        b.set_state(std::span<const Vec3>(pj), std::span<const Vec3>(qj), std::span<const Vec3>(rj));
-        plan.steps.erase(plan.steps.begin());
-        b.simulate(plan);
+          b.set_state(std::span<const Vec3>(pj), b.prev_positions(), b.prevprev_positions());
+        }
       } else {
         b.advance(frame);
       }
