@@ -461,6 +461,9 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
   const mat3 I3 = mat3(1.0);
   vec3 lam = vec3(0.0);
   vec3 rest_dir = quat_rotate(skin, lr.edge);
+  // The head's turn of this step carries the vertex by this (about the anchor: the constraints see no translation);
+  // the damped rate leaves it out, as the reference's local_shape_conservative does.
+  const vec3 carried = quat_rotate_delta(skin_delta(g), L_prev.xyz);
   const uint node = kSlotFloats * tvk_slot_strand + kNodeFloats * v;  // this lane's node (lanes v < N only)
   for (uint it = 0u; it < tvk_iterations; ++it) {
     const bool apply = it < gp.local_iterations;
@@ -471,7 +474,8 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
     int jf = st.jf;
     // 2. The reaction's Jacobian, from the edge before (its direction and length) and this row's target.
     float elen = v + 1u < N ? length(np.xyz - L_pos.xyz) : 0.0;
-    lanes_put(v, vec4(u, elen), vec4(L_pos.xyz - L_prev.xyz, w_self), vec4(0.0));
+    vec3 delta_self = L_pos.xyz - L_prev.xyz - carried;
+    lanes_put(v, vec4(u, elen), vec4(delta_self, w_self), vec4(0.0));
     vec4 before0 = lanes_get0(lane_before(v));
     vec4 before1 = lanes_get1(lane_before(v));
     vec4 after1 = lanes_get1(lane_after(v));
@@ -481,7 +485,6 @@ void local_shape_lanes_conservative(uint g, uint v, LaneRest lr, GroupParams gp)
     mat3 J = mat3(0.0);
     if (react) J = (dot(target, before0.xyz) * I3 - outerProduct(before0.xyz, target)) / max(before0.w, 0.5 * lr.len_left);
     bool live = row && (w_self > 0.0 || w_next > 0.0 || (react && w_prev > 0.0)) && !isinf(at) && !isnan(at);
-    vec3 delta_self = L_pos.xyz - L_prev.xyz;
     vec3 rate = after1.xyz - delta_self - J * (delta_self - before1.xyz);
     vec3 rhs = live ? -(np.xyz - L_pos.xyz - target + at * lam + gm * rate) / (1.0 + gm) : vec3(0.0);
     // 3. This node: constraint v's gradient blocks on the free vertices (x_{v-1}: J, x_v: -I - J, x_{v+1}: I), the

@@ -28,6 +28,7 @@ Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams
   seg_dp_.assign(rest_.vertices_per_strand, 0.0);
   lam_.assign(rest_.vertices_per_strand, 0.0);
   move_.assign(rest_.vertices_per_strand, Vec3{});
+  carried_.assign(rest_.vertices_per_strand, Vec3{});
   tdp_.assign(rest_.vertices_per_strand, Vec3{});
   lam3_.assign(rest_.vertices_per_strand, Vec3{});
   frame_dir_.assign(rest_.vertices_per_strand, Vec3{});
@@ -474,6 +475,12 @@ void Simulator::local_shape_conservative(const Substep& st) {
     const Quat skin = skin_rotation(st, g);
     auto w = [&](uint32_t v) { return shape_weight(b + v, gp, st.h); };
     for (uint32_t v = 0; v < n; ++v) lam[v] = Vec3{};
+    // What the head's rotation of this step carries each vertex by (about any point: the constraints do not see a
+    // translation), taken out of the damped rate: the targets turn with the head, so a strand turning with it keeps
+    // its constraints satisfied and is not damped (the rate G (x - prev) alone is their change less the targets'
+    // turn; it damped a strand carried rigidly with the head by 0.012 of its length over 30 frames of `shake`).
+    const Quat swing = skin_delta(st, g);
+    for (uint32_t v = 0; v < n; ++v) carried_[v] = quat_rotate_delta(swing, prev_[b + v] - prev_[b]);
     for (uint32_t it = 0; it < gp.local_iterations; ++it) {
       // 1. Directions and targets (as local_shape_compliant), and each constraint's gradient blocks.
       shape_targets(b, skin, &frame_edge);
@@ -523,7 +530,7 @@ void Simulator::local_shape_conservative(const Substep& st) {
         Vec3 rate{};  // G (x - prev)
         for (uint32_t k = 0; k < grad_count[v]; ++k) {
           const Block& bl = grad[v][k];
-          const Vec3 d = pos_[b + bl.vertex] - prev_[b + bl.vertex];
+          const Vec3 d = pos_[b + bl.vertex] - prev_[b + bl.vertex] - carried_[bl.vertex];
           for (int r = 0; r < 3; ++r) (&rate.x)[r] += bl.a[r * 3] * d.x + bl.a[r * 3 + 1] * d.y + bl.a[r * 3 + 2] * d.z;
         }
         const Vec3 c = pos_[b + v + 1] - pos_[b + v] - targets_[v];

@@ -144,6 +144,7 @@ class Simulator {
   std::vector<Vec3> lam3_, frame_dir_;  // kCompliant: shape multipliers per edge; per-edge directions
   std::vector<Vec3> targets_;           // kCompliant: each shape constraint's target edge
   std::vector<double> band_, band_rhs_;  // kConservative: the banded system and its right-hand side
+  std::vector<Vec3> carried_;            // kConservative: each vertex's move by the head's turn of this step
 };
 
 }  // namespace tressvk::reference
