@@ -95,6 +95,20 @@ int main(int argc, char** argv) {
     const SceneGeometry geo = scene_geometry(a.rest());
     const double median = a.median_strand_length();
     std::mt19937 rng(std::getenv("PROBE_SEED") ? static_cast<unsigned>(std::atoi(std::getenv("PROBE_SEED"))) : 7u);
+    // A simulator's guide positions with each offset from its strand's root moved by `scale` float ulps, up or down.
+    const auto moved_by_ulps = [&rng](const Simulator& sim, double scale) {
+      const size_t nn = sim.rest().vertices_per_strand;
+      std::vector<Vec3> out(sim.positions().begin(), sim.positions().end());
+      for (size_t i = 0; i < size_t{sim.rest().guide_count} * nn; ++i) {
+        const Vec3 root = sim.positions()[i / nn * nn];
+        for (int c = 0; c < 3; ++c) {
+          const float x = static_cast<float>(out[i][c] - root[c]);
+          const double d = static_cast<double>(std::nextafter(x, INFINITY)) - static_cast<double>(x);
+          out[i][c] += ((rng() & 1u) ? scale : -scale) * d;
+        }
+      }
+      return out;
+    };
     double worst = 0;
     uint32_t worst_frame = 0;
     size_t worst_vertex = 0;
@@ -142,21 +156,13 @@ int main(int argc, char** argv) {
       if (f == 0 && std::getenv("PROBE_RESET_PRE") != nullptr) {
         // The reset pose's rounding before the reset step's passes (a capsule's push, the length solve): the skinned
         // rest pose with each offset from its strand's root moved by S float ulps (positions and histories alike), then
-        // the reset step's passes as a plain step from it (no velocity; gravity and the global pull, which a reset
-        // step does not apply, off: 0 reproduces the first simulator's frame), then the frame's other steps.
+        // the reset step's passes as a plain step from it (no velocity, no gravity, which a reset step does not apply;
+        // the global pull draws the moved pose a fraction back; 0 reproduces the first simulator's frame), then the
+        // frame's other steps.
         const double scale = std::strtod(std::getenv("PROBE_RESET_PRE"), nullptr);
         FramePlan plan = b.planner().plan(frame);
         b.integrate(plan.steps.front());  // the reset: every vertex at its skinned rest pose
-        const size_t nn = b.rest().vertices_per_strand;
-        std::vector<Vec3> pj(b.positions().begin(), b.positions().end());
-        for (size_t i = 0; i < size_t{b.rest().guide_count} * nn; ++i) {
-          const Vec3 root = b.positions()[i / nn * nn];
-          for (int c = 0; c < 3; ++c) {
-            const float x = static_cast<float>(pj[i][c] - root[c]);
-            const double d = static_cast<double>(std::nextafter(x, INFINITY)) - static_cast<double>(x);
-            pj[i][c] += ((rng() & 1u) ? scale : -scale) * d;
-          }
-        }
+        const std::vector<Vec3> pj = moved_by_ulps(b, scale);
         b.set_state(std::span<const Vec3>(pj), std::span<const Vec3>(pj), std::span<const Vec3>(pj));
         plan.steps.front().reset = false;
         plan.steps.front().gravity_h2 = Vec3{};
@@ -167,20 +173,11 @@ int main(int argc, char** argv) {
         // its state at every step; the histories it keeps are copies of rounded positions).
         const double scale = std::strtod(step_ulp, nullptr);
         const FramePlan plan = b.planner().plan(frame);
-        const size_t nn = b.rest().vertices_per_strand;
         for (size_t k = 0; k < plan.steps.size(); ++k) {
           FramePlan one;
           one.steps.push_back(plan.steps[k]);
           b.simulate(one);  // (and the follow pass after each step: it only reads the guides)
-          std::vector<Vec3> pj(b.positions().begin(), b.positions().end());
-          for (size_t i = 0; i < size_t{b.rest().guide_count} * nn; ++i) {
-            const Vec3 root = b.positions()[i / nn * nn];
-            for (int c = 0; c < 3; ++c) {
-              const float x = static_cast<float>(pj[i][c] - root[c]);
-              const double d = static_cast<double>(std::nextafter(x, INFINITY)) - static_cast<double>(x);
-              pj[i][c] += ((rng() & 1u) ? scale : -scale) * d;
-            }
-          }
+          const std::vector<Vec3> pj = moved_by_ulps(b, scale);
           b.set_state(std::span<const Vec3>(pj), b.prev_positions(), b.prevprev_positions());
         }
       } else {
