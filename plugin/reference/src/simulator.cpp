@@ -231,7 +231,8 @@ double compliant_bend_alpha(double s_step, double edge, double strand_length, do
 // pinned, defaults, 240 Hz, 2 iterations, 32 vertices) at kCompliant's (tressvk_accuracy_probe cantilever).
 // (kConservativeCalibration: planner.hpp, times compliant_bend_alpha_base, kBendCalibration 5.4.)
 // kConservative's damping: kCompliant's damping time per edge times this (1.5 ms at the calibration edge), on the
-// constraints' own rate G (x - prev) (internal: a rigid turn is not damped). kCompliant needs 5 ms to take out the
+// constraints' own rate G (x - prev - carried), carried the head's turn of the step (a strand turning with the head is
+// not damped: local_shape_conservative). kCompliant needs 5 ms to take out the
 // energy its held targets put in; here the curly groom's trajectory converges as h halves with 1.5 ms, and more
 // amplifies rounding on the straight groom's upright strands (a 1e-7 perturbation after 60 frames of shake: 1.1e-7 at
 // 0.3, 3.8e-7 at 0.5 with 1.5e-6 on the way, 1.4e-5 at 0.7, 1.4e-4 at 1; tressvk_accuracy_probe perturb).
@@ -453,9 +454,9 @@ void Simulator::local_shape_conservative(const Substep& st) {
   // LengthModel::kConservative's local shape (see simulator.hpp). Per iteration: the targets as kCompliant's
   // (local_shape_compliant), each constraint's gradient blocks (I on x_{v+1}, -I on x_v, -J on x_{j+1}, +J on x_j),
   // then the symmetric system (rows divided by 1 + gamma): (G W G^T + at / (1 + gamma)) dlambda =
-  // -(C + at lambda + gamma G (x - prev)) / (1 + gamma), solved by a banded Cholesky factorisation (constraints u and v
-  // are coupled when they share a free vertex: |u - v| <= 2 for frames that turn at every edge), then
-  // x += W G^T dlambda.
+  // -(C + at lambda + gamma G (x - prev - carried)) / (1 + gamma), solved by a banded Cholesky factorisation
+  // (constraints u and v are coupled when they share a free vertex: |u - v| <= 2 for frames that turn at every edge),
+  // then x += W G^T dlambda.
   const uint32_t n = rest_.vertices_per_strand;
   if (n < 3) return;
   const uint32_t m = n - 2;  // constraints v = 1 .. n - 2, row block v - 1
@@ -527,7 +528,7 @@ void Simulator::local_shape_conservative(const Substep& st) {
           for (int i = 0; i < 3; ++i) at_band(rv + i, rv + i) = 1.0;  // dlambda 0
           continue;
         }
-        Vec3 rate{};  // G (x - prev)
+        Vec3 rate{};  // G (x - prev - carried)
         for (uint32_t k = 0; k < grad_count[v]; ++k) {
           const Block& bl = grad[v][k];
           const Vec3 d = pos_[b + bl.vertex] - prev_[b + bl.vertex] - carried_[bl.vertex];
