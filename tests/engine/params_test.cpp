@@ -71,6 +71,26 @@ TEST_CASE("params: defaults, every section read, and a saved file reads back the
   CHECK(contains(tressvk::demo::params_json(p), "\"damping\": 0.2,"));
 }
 
+// "model" leaves the step rate or the local iterations to the instance's model (TVK_STEP_RATE_BY_MODEL,
+// TVK_ITERATIONS_BY_MODEL, the defaults), and a saved file says so in words, not as 0 or 4294967295.
+TEST_CASE("params: the step rate and local iterations may be left to the model", "[engine][params]") {
+  const Params empty = parse_params("{}", "empty.json");
+  CHECK(empty.settings.time.step_rate == TVK_STEP_RATE_BY_MODEL);
+  CHECK(empty.simulation.local_iterations == TVK_ITERATIONS_BY_MODEL);
+  const std::string saved = tressvk::demo::params_json(empty);
+  CHECK(contains(saved, "\"step_rate\": \"model\""));
+  CHECK(contains(saved, "\"local_iterations\": \"model\""));
+  const Params back = parse_params(saved, "back.json");
+  CHECK(back.settings.time.step_rate == TVK_STEP_RATE_BY_MODEL);
+  CHECK(back.simulation.local_iterations == TVK_ITERATIONS_BY_MODEL);
+  const Params p = parse_params(R"({"simulation": {"local_iterations": "model"}, "settings": {"step_rate": "model"}})",
+                                "p.json");
+  CHECK(p.settings.time.step_rate == TVK_STEP_RATE_BY_MODEL);
+  CHECK(p.simulation.local_iterations == TVK_ITERATIONS_BY_MODEL);
+  CHECK(contains(error_of(R"({"settings": {"step_rate": "fast"}})"), "settings.step_rate: expected a number"));
+  CHECK(contains(error_of(R"({"settings": {"step_rate": 0}})"), "settings.step_rate: 0 is outside 30..480"));
+}
+
 TEST_CASE("params: a broken file names the file and the field, or the line and column", "[engine][params]") {
   CHECK(contains(error_of("{\"simulation\": {\n  \"damping\": 0.1,,\n}}"), "p.json: not valid JSON"));
   CHECK(contains(error_of("{\"simulation\": {\n  \"damping\": 0.1,,\n}}"), "line 2"));

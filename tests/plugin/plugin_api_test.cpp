@@ -92,6 +92,70 @@ TEST_CASE("the conservative model below its recommended step rate warns the host
   tressvk_destroy_asset(long128);
 }
 
+// What the settings leave to the model (the defaults: TVK_STEP_RATE_BY_MODEL, TVK_ITERATIONS_BY_MODEL) an instance
+// resolves to its model's rate and iterations for its strands, and reports through tressvk_get_sim_settings and
+// tressvk_get_sim_params; a change of model resolves them again, and a value the host set stays as set.
+TEST_CASE("an instance runs its model's rate and iterations where the settings leave them to it", "[plugin]") {
+  test::PluginContext ctx = context_keeping_warnings();
+  TvkAsset curly = test::load_asset(ctx.get(), test::small_groom("curly", 4));
+  TvkAsset long128 = test::load_asset(ctx.get(), test::small_groom("long128", 4));
+  const auto create = [&](TvkAsset asset, const TvkSimSettings* settings) {
+    TvkInstanceCreateInfo ici{};
+    ici.struct_size = sizeof(ici);
+    ici.asset = asset;
+    ici.settings = settings;
+    TvkInstance inst = nullptr;
+    REQUIRE(tressvk_create_instance(ctx.get(), &ici, &inst) == TVK_SUCCESS);
+    return inst;
+  };
+  const auto rate_of = [](TvkInstance i) {
+    TvkSimSettings s{};
+    REQUIRE(tressvk_get_sim_settings(i, &s) == TVK_SUCCESS);
+    return s.time.step_rate;
+  };
+  const auto iterations_of = [](TvkInstance i) {
+    TvkSimParams p{};
+    REQUIRE(tressvk_get_sim_params(i, 0, &p) == TVK_SUCCESS);
+    return p.local_iterations;
+  };
+  TvkSimSettings ftl = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  ftl.model = TVK_SIM_MODEL_FOLLOW_THE_LEADER;
+  TvkSimSettings conservative = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  conservative.model = TVK_SIM_MODEL_CONSERVATIVE;
+  TvkInstance a = create(curly, &ftl);
+  TvkInstance b = create(curly, &conservative);
+  TvkInstance c = create(long128, &conservative);
+  CHECK(rate_of(a) == 240.0f);
+  CHECK(iterations_of(a) == 2u);
+  CHECK(rate_of(b) == 120.0f);
+  CHECK(iterations_of(b) == 1u);
+  CHECK(rate_of(c) == 240.0f);  // more than 64 vertices a strand
+  CHECK(iterations_of(c) == 1u);
+  CHECK(g_warnings.empty());  // the model's own rates are never below its recommended ones
+  // The model changes: what was left to it follows; the reported model is the one that runs.
+  REQUIRE(tressvk_set_sim_settings(a, &conservative) == TVK_SUCCESS);
+  CHECK(rate_of(a) == 120.0f);
+  CHECK(iterations_of(a) == 1u);
+  TvkSimSettings reported{};
+  REQUIRE(tressvk_get_sim_settings(a, &reported) == TVK_SUCCESS);
+  CHECK(reported.model == TVK_SIM_MODEL_CONSERVATIVE);
+  // Values the host sets stay as set, whatever the model.
+  TvkSimSettings at60 = conservative;
+  at60.time.step_rate = 60.0f;
+  REQUIRE(tressvk_set_sim_settings(b, &at60) == TVK_SUCCESS);
+  CHECK(rate_of(b) == 60.0f);
+  TvkSimParams three = TVK_SIM_PARAMS_DEFAULT_INIT;
+  three.local_iterations = 3;
+  REQUIRE(tressvk_set_sim_params(b, TVK_ALL_GROUPS, &three) == TVK_SUCCESS);
+  CHECK(iterations_of(b) == 3u);
+  // Bad calls name themselves.
+  CHECK(tressvk_get_sim_params(a, 7, &three) == TVK_ERROR_INVALID_ARGUMENT);
+  CHECK(tressvk_get_sim_settings(a, nullptr) == TVK_ERROR_INVALID_ARGUMENT);
+  for (TvkInstance i : {a, b, c}) tressvk_destroy_instance(i);
+  tressvk_destroy_asset(curly);
+  tressvk_destroy_asset(long128);
+}
+
 // Strands with sub-micrometre segments (hard case 8's groom) are respaced on load (model::kRespaceBelowRel), and the
 // host is told; a baked-like groom loads without that warning.
 TEST_CASE("an asset with sub-micrometre segments loads with a warning that its strands were respaced", "[plugin]") {

@@ -771,6 +771,35 @@ TEST_CASE("the conservative model refines its shape solve below 120 Hz and follo
   }
 }
 
+// The conservative model with the rate and iterations left to it (the defaults) runs 1 local iteration at 120 Hz on
+// strands of up to 64 vertices and at 240 Hz above (sim_types.h, TVK_STEP_RATE_BY_MODEL), the GPU instance and the
+// reference resolving them alike: 2 and 4 steps a 60 Hz frame, the unrefined kernel, the reference followed.
+TEST_CASE("the conservative model runs at its own rate and iterations where the settings leave them to it",
+          "[plugin][simulation]") {
+  struct Row {
+    const char* groom;
+    uint32_t guides, frames, steps;
+  };
+  for (const Row& row : {Row{"curly", 8, 12, 2}, Row{"long128", 4, 6, 4}}) {
+    const asset::HairAsset hair = test::small_groom(row.groom, row.guides);
+    TvkSimSettings settings TVK_SIM_SETTINGS_DEFAULT_INIT;
+    settings.model = TVK_SIM_MODEL_CONSERVATIVE;
+    const SceneResult r = run_scene(hair, "shake", row.frames, {}, settings);
+    INFO(row.groom << ": passes " << (r.passes.empty() ? std::string("none") : r.passes.front()) << ", step error "
+                   << r.step_error_max << ", stretch " << r.stretch_max);
+    REQUIRE(r.passes.size() == 1);
+    CHECK(has_pass_containing(r.passes, "conservative"));
+    CHECK_FALSE(has_pass_containing(r.passes, "refined"));
+    REQUIRE(r.steps.size() == row.frames);
+    for (size_t f = 1; f < r.steps.size(); ++f) {
+      INFO("frame " << f);
+      CHECK(r.steps[f] == row.steps);
+    }
+    CHECK(r.step_error_max <= r.step_error_bar());
+    check_scene(r);
+  }
+}
+
 TEST_CASE("a host at a sustained 24 fps runs 10 steps a frame and matches the reference", "[plugin][simulation]") {
   // 24 fps needs 10 steps of 240 Hz a frame, more than max_steps_per_frame (8): once the planner has seen the rate is
   // sustained (4 frames) every frame runs all 10 (docs/simulation.md, "Time policy"), through the per-frame upload

@@ -2,6 +2,8 @@
 
 #include "params.hpp"
 
+#include <tressvk/model/planner.hpp>
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -29,13 +31,22 @@ void add_model_option(CLI::App& subcommand, TvkSimModel& model) {
 }
 
 void add_simulation_options(CLI::App& subcommand, TvkSimParams& params, TvkSimSettings& settings) {
-  subcommand.add_option("--step-rate", settings.time.step_rate, "simulation steps per second")->capture_default_str();
-  subcommand.add_option("--local-iterations", params.local_iterations)->capture_default_str();
+  subcommand.add_option("--step-rate", settings.time.step_rate,
+                        "simulation steps per second, 30..480 (default: the model's: 240; conservative 120 for "
+                        "strands of up to 64 vertices)");
+  subcommand.add_option("--local-iterations", params.local_iterations,
+                        "local shape iterations a step (default: the model's: 2; conservative 1)");
   subcommand.add_option("--length-iterations", params.length_iterations)->capture_default_str();
   add_model_option(subcommand, settings.model);
   subcommand.add_option("--sleep-below", settings.sleep_below,
                         "a still groom's guides sleep below this move per step (fraction of the median strand length; 0 = never)")
       ->capture_default_str();
+}
+
+void resolve_for_model(TvkSimSettings& settings, TvkSimParams& params, uint32_t vertices_per_strand) {
+  const model::StrandModel m = model::resolve_model(settings.model);
+  settings = model::resolve_settings(settings, m, vertices_per_strand);
+  params = model::resolve_params(params, m);
 }
 
 bool write_json(const nlohmann::json& j, const std::string& path, const char* tool) {

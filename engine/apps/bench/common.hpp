@@ -31,6 +31,11 @@ void add_groom_options(CLI::App& subcommand, std::string& asset_path, std::strin
 void add_model_option(CLI::App& subcommand, TvkSimModel& model);
 void add_simulation_options(CLI::App& subcommand, TvkSimParams& params, TvkSimSettings& settings);
 
+// Replaces what the settings and parameters leave to the model (TVK_STEP_RATE_BY_MODEL, TVK_ITERATIONS_BY_MODEL) by
+// the values an instance of a groom of n vertices a strand resolves them to, so that every row and report names the
+// rate and iterations that ran.
+void resolve_for_model(TvkSimSettings& settings, TvkSimParams& params, uint32_t vertices_per_strand);
+
 // Writes `j` (indented) to `path`; false, with "`tool`: cannot write PATH" on stderr, when that fails.
 bool write_json(const nlohmann::json& j, const std::string& path, const char* tool);
 

@@ -121,6 +121,10 @@ int execute_hardcases_command(const HardCasesCommand& cmd) {
     if (cmd.step_rate > 0) c.settings.time.step_rate = static_cast<float>(cmd.step_rate);
     if (cmd.local_iterations > 0) c.params.local_iterations = c.unscaled_params.local_iterations = cmd.local_iterations;
     c.settings.model = cmd.model;
+    // What the case leaves to the model becomes the model's for its strands (the table names what ran).
+    TvkSimSettings unscaled_settings = c.settings;
+    resolve_for_model(unscaled_settings, c.unscaled_params, c.unscaled_groom.vertices_per_strand);
+    resolve_for_model(c.settings, c.params, c.groom.vertices_per_strand);
   }
   nlohmann::json rows = nlohmann::json::array();
   uint32_t passed = 0;

@@ -199,6 +199,7 @@ int main(int argc, char** argv) {
       groom = baker::make_builtin_groom(builtin, groom_options);
       groom_name = builtin;
     }
+    bench::resolve_for_model(o.settings, o.params, groom.vertices_per_strand);
     const bench::CompareResult r = bench::run_compare(dev, groom, groom_name, o);
     if (table_row) {
       // | groom | guides x N (+K follows) | scene | steps/frame | GPU ms/frame | step error max | trajectory rms |

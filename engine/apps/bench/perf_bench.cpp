@@ -221,6 +221,7 @@ int execute_perf_command(const PerfCommand& given) {
     return 1;
   }
 
+  resolve_for_model(cmd.settings, cmd.params, groom.vertices_per_strand);
   nlohmann::json out;
   try {
     engine::Device dev(host::tool_device_options("tressvk-bench", cmd.device, cmd.validation, cmd.validation));

@@ -59,6 +59,8 @@ int execute_run_command(const RunCommand& cmd) {
     return 1;
   }
   asset::HairAsset groom;
+  TvkSimSettings settings = cmd.settings;
+  TvkSimParams params = cmd.params;
   try {
     if (!cmd.asset_path.empty()) {
       asset::ReadResult read = asset::read_file(cmd.asset_path);
@@ -73,9 +75,11 @@ int execute_run_command(const RunCommand& cmd) {
       o.vertices_per_strand = cmd.vertices;
       groom = baker::make_builtin_groom(cmd.builtin, o);
     }
-    // Parameters checked the way the plugin checks them (the message names the field).
-    reference::to_group_step(cmd.params, 1.0 / 240.0, groom.tip_separation, 1.0);
-    reference::FramePlanner(cmd.settings, groom.origin, 0);
+    // Parameters checked the way the plugin checks them (the message names the field), with the model's rate and
+    // iterations where they are left to it (what the dump names).
+    resolve_for_model(settings, params, groom.vertices_per_strand);
+    reference::to_group_step(params, 1.0 / 240.0, groom.tip_separation, 1.0);
+    reference::FramePlanner(settings, groom.origin, 0);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tressvk-bench run: %s\n", e.what());
     return 1;
@@ -87,19 +91,19 @@ int execute_run_command(const RunCommand& cmd) {
     TvkContext ctx = host::create_context(dev, 1);
     const std::vector<std::byte> bytes = asset::write(groom);
     TvkAsset asset = host::load_asset(dev, ctx, bytes);
-    TvkInstance inst = host::create_instance(ctx, asset, cmd.settings, cmd.params);
+    TvkInstance inst = host::create_instance(ctx, asset, settings, params);
     for (uint32_t g = 0; g < std::max<size_t>(1, groom.groups.size()); ++g)
-      host::check_tvk(tressvk_set_sim_params(inst, g, &cmd.params), ctx, "tressvk_set_sim_params");
+      host::check_tvk(tressvk_set_sim_params(inst, g, &params), ctx, "tressvk_set_sim_params");
 
-    reference::Simulator probe(groom, std::span<const TvkSimParams>(&cmd.params, 1), cmd.settings);
+    reference::Simulator probe(groom, std::span<const TvkSimParams>(&params, 1), settings);
     const reference::SceneGeometry geometry = reference::scene_geometry(probe.rest());
     const size_t guide_vertices = groom.rest_positions.size();
     const uint32_t n = groom.vertices_per_strand;
     json = "{\"groom\": \"" + (cmd.asset_path.empty() ? cmd.builtin : std::filesystem::path(cmd.asset_path).filename().string()) +
            "\", \"scene\": \"" + cmd.scene + "\", \"step_rate_hz\": ";
-    put_number(json, cmd.settings.time.step_rate);
-    json += ", \"local_iterations\": " + std::to_string(cmd.params.local_iterations) +
-            ", \"length_iterations\": " + std::to_string(cmd.params.length_iterations) +
+    put_number(json, settings.time.step_rate);
+    json += ", \"local_iterations\": " + std::to_string(params.local_iterations) +
+            ", \"length_iterations\": " + std::to_string(params.length_iterations) +
             ", \"vertices_per_strand\": " + std::to_string(n) + ", \"units\": \"m\", \"frames\": [";
     bool first_frame = true;
     double time = 0;

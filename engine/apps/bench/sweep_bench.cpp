@@ -199,16 +199,21 @@ int execute_sweep_command(const SweepCommand& given) {
     o.vertices_per_strand = n;
     return baker::make_builtin_groom(cmd.builtin, o);
   };
-  // The default setting: the product's step rate and iterations, the groom's own vertex count.
-  const TvkSimParams product = TVK_SIM_PARAMS_DEFAULT_INIT;
-  const TvkSimSettings product_settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  // The default setting: the product's step rate and iterations for the sweep's model, the groom's own vertex count.
+  TvkSimParams product = TVK_SIM_PARAMS_DEFAULT_INIT;
+  TvkSimSettings product_settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  product_settings.model = cmd.settings.model;
   asset::HairAsset ref_groom;
   Config def{};
   try {
-    def = {product_settings.time.step_rate, product.local_iterations, product.length_iterations,
-           make(0).vertices_per_strand};
+    const uint32_t n = make(0).vertices_per_strand;
+    resolve_for_model(product_settings, product, n);
+    def = {product_settings.time.step_rate, product.local_iterations, product.length_iterations, n};
     ref_groom = reference::guide_prefix(make(cmd.reference_vertices), std::min(cmd.error_guides, cmd.guides));
-    reference::to_group_step(cmd.params, 1.0 / 240.0, ref_groom.tip_separation, 1.0);  // checked as the plugin checks
+    TvkSimSettings checked_settings = cmd.settings;
+    TvkSimParams checked = cmd.params;
+    resolve_for_model(checked_settings, checked, n);
+    reference::to_group_step(checked, 1.0 / 240.0, ref_groom.tip_separation, 1.0);  // checked as the plugin checks
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: --builtin %s: %s\n", me, cmd.builtin.c_str(), e.what());
     return 1;

@@ -40,6 +40,8 @@ struct Reader {
     if (n < lo || n > hi) fail(field, std::to_string(n) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
     return static_cast<uint32_t>(n);
   }
+  // "model": the value the instance's model runs at (TVK_STEP_RATE_BY_MODEL, TVK_ITERATIONS_BY_MODEL).
+  static bool by_model(const json& v) { return v.is_string() && v.get<std::string>() == "model"; }
   void vec3(const json& v, const std::string& field, float* out, double lo, double hi) const {
     if (!v.is_array() || v.size() != 3) fail(field, "expected an array of 3 numbers");
     for (int i = 0; i < 3; ++i) out[i] = number(v[static_cast<size_t>(i)], field + "[" + std::to_string(i) + "]", lo, hi);
@@ -86,7 +88,8 @@ Params parse_params(std::string_view text, std::string_view name) {
     {"global_stiffness", [&](const json& v, const std::string& f) { s.global_stiffness = r.number(v, f, 0, 1); }},
     {"global_range", [&](const json& v, const std::string& f) { s.global_range = r.number(v, f, 0, 1); }},
     {"local_stiffness", [&](const json& v, const std::string& f) { s.local_stiffness = r.number(v, f, 0, 1); }},
-    {"local_iterations", [&](const json& v, const std::string& f) { s.local_iterations = r.count(v, f, 0, TVK_MAX_ITERATIONS); }},
+    {"local_iterations", [&](const json& v, const std::string& f) {
+       s.local_iterations = Reader::by_model(v) ? TVK_ITERATIONS_BY_MODEL : r.count(v, f, 0, TVK_MAX_ITERATIONS); }},
     {"length_iterations", [&](const json& v, const std::string& f) { s.length_iterations = r.count(v, f, 1, TVK_MAX_ITERATIONS); }},
     {"vsp_coefficient", [&](const json& v, const std::string& f) { s.vsp_coefficient = r.number(v, f, 0, 1); }},
     {"vsp_threshold", [&](const json& v, const std::string& f) { s.vsp_threshold = r.number(v, f, 0, 1e6); }},
@@ -97,7 +100,8 @@ Params parse_params(std::string_view text, std::string_view name) {
   TvkSimSettings& st = p.settings;
   r.section(root, "settings", {
     {"gravity", [&](const json& v, const std::string& f) { r.vec3(v, f, st.gravity, -1000, 1000); }},
-    {"step_rate", [&](const json& v, const std::string& f) { st.time.step_rate = r.number(v, f, 30, 480); }},
+    {"step_rate", [&](const json& v, const std::string& f) {
+       st.time.step_rate = Reader::by_model(v) ? TVK_STEP_RATE_BY_MODEL : r.number(v, f, 30, 480); }},
     {"max_steps_per_frame", [&](const json& v, const std::string& f) { st.time.max_steps_per_frame = r.count(v, f, 1, TVK_MAX_STEPS_PER_FRAME); }},
     {"max_steps_sustained", [&](const json& v, const std::string& f) { st.time.max_steps_sustained = r.count(v, f, 0, TVK_MAX_STEPS_PER_FRAME); }},
     {"sleep_below", [&](const json& v, const std::string& f) { st.sleep_below = r.number(v, f, 0, 1e-3); }},
@@ -197,11 +201,11 @@ std::string params_json(const Params& p) {
   ordered_json j;
   j["tressvk_params"] = 1;
   j["simulation"] = {{"damping", shortest(s.damping)}, {"global_stiffness", shortest(s.global_stiffness)}, {"global_range", shortest(s.global_range)},
-                     {"local_stiffness", shortest(s.local_stiffness)}, {"local_iterations", s.local_iterations},
+                     {"local_stiffness", shortest(s.local_stiffness)}, {"local_iterations", s.local_iterations == TVK_ITERATIONS_BY_MODEL ? ordered_json("model") : ordered_json(s.local_iterations)},
                      {"length_iterations", s.length_iterations}, {"vsp_coefficient", shortest(s.vsp_coefficient)},
                      {"vsp_threshold", shortest(s.vsp_threshold)}, {"max_speed", shortest(s.max_speed)},
                      {"tip_separation", shortest(s.tip_separation)}, {"rigid_below", shortest(s.rigid_below)}};
-  j["settings"] = {{"gravity", v3(p.settings.gravity)}, {"step_rate", shortest(p.settings.time.step_rate)},
+  j["settings"] = {{"gravity", v3(p.settings.gravity)}, {"step_rate", p.settings.time.step_rate == TVK_STEP_RATE_BY_MODEL ? ordered_json("model") : ordered_json(shortest(p.settings.time.step_rate))},
                    {"max_steps_per_frame", p.settings.time.max_steps_per_frame},
                    {"max_steps_sustained", p.settings.time.max_steps_sustained},
                    {"sleep_below", shortest(p.settings.sleep_below)}, {"model", sim_model_name(p.settings.model)}};

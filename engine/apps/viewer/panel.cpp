@@ -104,19 +104,26 @@ void Panel::build(demo::DemoApp& app, const demo::FrameReport& frame, Window& wi
       p.settings.model = kModelValues[model];
       changed = true;
     }
-    static const char* const kRates[] = {"60 Hz", "120 Hz", "240 Hz", "480 Hz"};
-    static const float kRateValues[] = {60.0f, 120.0f, 240.0f, 480.0f};
-    int rate = 2;
-    for (int i = 0; i < 4; ++i)
+    static const char* const kRates[] = {"the model's", "60 Hz", "120 Hz", "240 Hz", "480 Hz"};
+    static const float kRateValues[] = {TVK_STEP_RATE_BY_MODEL, 60.0f, 120.0f, 240.0f, 480.0f};
+    int rate = 0;
+    for (int i = 0; i < 5; ++i)
       if (p.settings.time.step_rate == kRateValues[i]) rate = i;
-    if (ImGui::Combo("step rate", &rate, kRates, 4)) {
+    if (ImGui::Combo("step rate", &rate, kRates, 5)) {
       p.settings.time.step_rate = kRateValues[rate];
       changed = true;
     }
-    int iterations = static_cast<int>(p.simulation.local_iterations);
-    if (ImGui::SliderInt("local iterations", &iterations, 1, 8)) {
-      p.simulation.local_iterations = static_cast<uint32_t>(iterations);
+    bool model_iterations = p.simulation.local_iterations == TVK_ITERATIONS_BY_MODEL;
+    if (ImGui::Checkbox("the model's local iterations", &model_iterations)) {
+      p.simulation.local_iterations = model_iterations ? TVK_ITERATIONS_BY_MODEL : 2u;
       changed = true;
+    }
+    if (!model_iterations) {
+      int iterations = static_cast<int>(p.simulation.local_iterations);
+      if (ImGui::SliderInt("local iterations", &iterations, 1, 8)) {
+        p.simulation.local_iterations = static_cast<uint32_t>(iterations);
+        changed = true;
+      }
     }
     changed |= ImGui::SliderFloat("damping", &p.simulation.damping, 0.0f, 1.0f);
     changed |= ImGui::SliderFloat("global stiffness", &p.simulation.global_stiffness, 0.0f, 1.0f);

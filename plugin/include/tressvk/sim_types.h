@@ -27,6 +27,13 @@ extern "C" {
 #define TVK_ASLEEP_QUIET_FRAMES 3u  /* a guide sleeps (TvkSimSettings::sleep_below) while its anchor's w is at least
                                        this (TvkInstanceBuffers::anchors) */
 
+/* Settings the host may leave to the instance's model (TvkSimModel): each model runs at the rate and iteration count
+ * it is made for. tressvk_get_sim_settings and tressvk_get_sim_params report what an instance resolved them to. */
+#define TVK_STEP_RATE_BY_MODEL 0.0f        /* TvkTimeSettings::step_rate: follow-the-leader and compliant 240 Hz;
+                                              conservative 120 Hz for strands of up to 64 vertices, 240 Hz above */
+#define TVK_ITERATIONS_BY_MODEL 0xFFFFFFFFu /* TvkSimParams::local_iterations: follow-the-leader and compliant 2;
+                                              conservative 1 */
+
 /* Per strand group (an asset has one or more groups, e.g. "mohawk", "fur"). Stiffnesses are per-iteration
  * fractions as in TressFX, not moduli; with the fixed step (TvkTimeSettings) they do not depend on frame rate. */
 typedef struct TvkSimParams {
@@ -40,8 +47,9 @@ typedef struct TvkSimParams {
                                as 0.5 * min(local_stiffness, 0.95) per iteration. 0 = no local-shape pass.
                                Default 0.9 */
   uint32_t local_iterations;  /* 0..TVK_MAX_ITERATIONS sweeps of local shape per step, honoured for every vertex
-                               count. 0 = no local-shape pass. Default 2 (1 is not stable on tightly curled
-                               strands, as in TressFX) */
+                               count. 0 = no local-shape pass. Default TVK_ITERATIONS_BY_MODEL: 2 on
+                               follow-the-leader (1 is not stable on tightly curled strands, as in TressFX), 1 on
+                               the conservative model (its shape does not depend on the count) */
   uint32_t length_iterations; /* 1..TVK_MAX_ITERATIONS root-to-tip length-constraint sweeps per step; the last is
                                follow-the-leader (exact lengths), earlier ones share corrections between both
                                ends. Default 1 (more sweeps soften the strand and, with local shape, can make a
@@ -63,7 +71,7 @@ typedef struct TvkSimParams {
 } TvkSimParams;
 
 #define TVK_SIM_PARAMS_DEFAULT_INIT \
-  { 0.08f, 0.15f, 0.3f, 0.9f, 2u, 1u, 0.9f, 100.0f, 50.0f, -1.0f, -1.0f }
+  { 0.08f, 0.15f, 0.3f, 0.9f, TVK_ITERATIONS_BY_MODEL, 1u, 0.9f, 100.0f, 50.0f, -1.0f, -1.0f }
 
 /* Wind: a world-space acceleration acting on each segment perpendicular to it (so it bends hair, never
  * stretches it), pointing WITH `direction`, spread over a cone so neighbouring strands differ, and gusting as
@@ -100,10 +108,12 @@ typedef struct TvkCapsule {
  * steps, so a 24 fps host simulates in real time at the same steps per second as a 60 fps one; a single long
  * frame among short ones is still a hitch. */
 typedef struct TvkTimeSettings {
-  float step_rate;          /* Hz, 30..480. Default 240 (4 steps at 60 fps: gravity moves a free vertex 0.17 mm
-                               per step, well under the sub-millimetre segments of real grooms such as the Ratboy
-                               mohawk, where 120 Hz (0.68 mm per step) made the model's response to float32
-                               rounding 10x larger; and 30/60/120/144 fps hosts all simulate on the same grid) */
+  float step_rate;          /* Hz, 30..480, or TVK_STEP_RATE_BY_MODEL (0, the default): 240 Hz on follow-the-leader
+                               (4 steps at 60 fps: gravity moves a free vertex 0.17 mm per step, well under the
+                               sub-millimetre segments of real grooms such as the Ratboy mohawk, where 120 Hz
+                               (0.68 mm per step) made the model's response to float32 rounding 10x larger; and
+                               30/60/120/144 fps hosts all simulate on the same grid); 120 Hz on the conservative
+                               model for strands of up to 64 vertices, 240 Hz above */
   uint32_t max_steps_per_frame; /* 1..TVK_MAX_STEPS_PER_FRAME, the reset step of a resetting frame included.
                                Default 8 (a 30 fps frame still runs in full) */
   uint32_t max_steps_sustained; /* 0..TVK_MAX_STEPS_PER_FRAME: the cap while the host's rate stays low (at least
@@ -112,7 +122,7 @@ typedef struct TvkTimeSettings {
                                to 15 fps at 240 Hz steps) */
 } TvkTimeSettings;
 
-#define TVK_TIME_SETTINGS_DEFAULT_INIT { 240.0f, 8u, 16u }
+#define TVK_TIME_SETTINGS_DEFAULT_INIT { TVK_STEP_RATE_BY_MODEL, 8u, 16u }
 
 /* An instance's rigid placement in the world: world = translation + rotation * instance_point. Double precision
  * so a character far from the origin keeps full precision: TressVK subtracts the translation in double and the
@@ -172,7 +182,9 @@ typedef enum TvkSimModel {
                                           rest comes to rest; recommended at 120 Hz with 1 local iteration for
                                           strands of up to 64 vertices (60 Hz for less time, where its solve is
                                           refined: the same hard cases pass, with more error in violent motion),
-                                          240 Hz for longer ones; below those rates an instance gets a warning */
+                                          240 Hz for longer ones, which TVK_STEP_RATE_BY_MODEL and
+                                          TVK_ITERATIONS_BY_MODEL (the defaults) give it; below 60 Hz (240 Hz above
+                                          64 vertices) an instance gets a warning */
   TVK_SIM_MODEL_COMPLIANT = 3,         /* the conservative model's constraints with targets held while it solves:
                                           faster, but curly hair never comes to rest */
   TVK_SIM_MODEL_MAX_ENUM = 0x7FFFFFFF  /* keeps the enum 32 bits wide; not a model */

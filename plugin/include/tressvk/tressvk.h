@@ -195,6 +195,11 @@ TVK_API void tressvk_destroy_instance(TvkInstance instance);
 #define TVK_ALL_GROUPS 0xFFFFFFFFu
 TVK_API TvkResult tressvk_set_sim_params(TvkInstance instance, uint32_t group, const TvkSimParams* params);
 TVK_API TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* settings);
+/* What the instance runs: its settings and one group's parameters as set, with every value left to the model
+ * (TVK_STEP_RATE_BY_MODEL, TVK_ITERATIONS_BY_MODEL) replaced by the model's, and TVK_SIM_MODEL_DEFAULT by the
+ * model it stands for. */
+TVK_API TvkResult tressvk_get_sim_settings(TvkInstance instance, TvkSimSettings* out_settings);
+TVK_API TvkResult tressvk_get_sim_params(TvkInstance instance, uint32_t group, TvkSimParams* out_params);
 /* This frame's motion, wind and colliders. Call before tressvk_cmd_simulate; the frame is copied. An instance
  * whose frame was not set since its last simulation keeps its pose and advances no time (dt 0). */
 TVK_API TvkResult tressvk_set_frame(TvkInstance instance, const TvkSimFrame* frame);

@@ -438,7 +438,8 @@ GroupStep to_group_step(const TvkSimParams& p, double h, double asset_tip_separa
   require(in01(p.global_stiffness), "params.global_stiffness must be within 0..1");
   require(in01(p.global_range), "params.global_range must be within 0..1");
   require(in01(p.local_stiffness), "params.local_stiffness must be within 0..1");
-  require(p.local_iterations <= TVK_MAX_ITERATIONS, "params.local_iterations exceeds TVK_MAX_ITERATIONS");
+  require(p.local_iterations <= TVK_MAX_ITERATIONS,
+          "params.local_iterations exceeds TVK_MAX_ITERATIONS (TVK_ITERATIONS_BY_MODEL goes through resolve_params)");
   require(p.length_iterations >= 1 && p.length_iterations <= TVK_MAX_ITERATIONS,
           "params.length_iterations must be within 1..TVK_MAX_ITERATIONS");
   require(in01(p.vsp_coefficient), "params.vsp_coefficient must be within 0..1");
@@ -566,6 +567,25 @@ StrandModel resolve_model(TvkSimModel model) {
     return StrandModel::kFollowTheLeader;
   }();
   return from_environment;
+}
+
+float model_step_rate(StrandModel m, uint32_t vertices_per_strand) {
+  if (m == StrandModel::kConservative) return vertices_per_strand > 64u ? 240.0f : 120.0f;
+  return 240.0f;
+}
+
+uint32_t model_local_iterations(StrandModel m) { return m == StrandModel::kConservative ? 1u : 2u; }
+
+TvkSimSettings resolve_settings(const TvkSimSettings& settings, StrandModel m, uint32_t vertices_per_strand) {
+  TvkSimSettings s = settings;
+  if (s.time.step_rate == TVK_STEP_RATE_BY_MODEL) s.time.step_rate = model_step_rate(m, vertices_per_strand);
+  return s;
+}
+
+TvkSimParams resolve_params(const TvkSimParams& params, StrandModel m) {
+  TvkSimParams p = params;
+  if (p.local_iterations == TVK_ITERATIONS_BY_MODEL) p.local_iterations = model_local_iterations(m);
+  return p;
 }
 
 double compliant_global_fraction(double s, double h) {

@@ -10,15 +10,18 @@ namespace tressvk::reference {
 
 Simulator::Simulator(const asset::HairAsset& asset, std::span<const TvkSimParams> group_params,
                      const TvkSimSettings& settings, const PlannerLimits& limits)
-    : rest_(build_model_rest(asset)), planner_(settings, asset.origin, rest_.asset_bone_count, limits) {
+    : rest_(build_model_rest(asset)),
+      host_settings_(settings),
+      planner_(resolve_settings(settings, resolve_model(settings.model), rest_.vertices_per_strand), asset.origin,
+               rest_.asset_bone_count, limits) {
   planner_.set_bone_source(rest_.bone_source);  // the bones the strands read, as the plugin's instances plan them
   asset_inv_mass_ = rest_.inv_mass;
-  set_params(group_params);
   switch (resolve_model(settings.model)) {
     case StrandModel::kCompliant: length_model_ = LengthModel::kCompliant; break;
     case StrandModel::kConservative: length_model_ = LengthModel::kConservative; break;
     case StrandModel::kFollowTheLeader: break;
   }
+  set_params(group_params);
   const size_t n_all = size_t{rest_.guide_count} * (rest_.follow_per_guide + 1) * rest_.vertices_per_strand;
   pos_.assign(n_all, Vec3{});
   tangent_.assign(n_all, Vec3{});
@@ -47,11 +50,30 @@ void Simulator::set_params(std::span<const TvkSimParams> group_params) {
   prepare_groups(planner_.step_length());
 }
 
+StrandModel Simulator::strand_model() const {
+  switch (length_model_) {
+    case LengthModel::kCompliant: return StrandModel::kCompliant;
+    case LengthModel::kConservative: return StrandModel::kConservative;
+    case LengthModel::kFollowTheLeader:
+    case LengthModel::kNewmark: break;
+  }
+  return StrandModel::kFollowTheLeader;
+}
+
+void Simulator::set_model(SimModel m) {
+  length_model_ = m;
+  if (host_settings_.time.step_rate == TVK_STEP_RATE_BY_MODEL)
+    planner_.set_settings(resolve_settings(host_settings_, strand_model(), rest_.vertices_per_strand));
+  prepared_h_ = -1;
+  prepare_groups(planner_.step_length());
+}
+
 void Simulator::prepare_groups(double h) {
   if (h == prepared_h_) return;
   steps_params_.clear();
   for (const TvkSimParams& p : params_)
-    steps_params_.push_back(to_group_step(p, h, rest_.asset_tip_separation, rest_.median_length));
+    steps_params_.push_back(
+        to_group_step(resolve_params(p, strand_model()), h, rest_.asset_tip_separation, rest_.median_length));
   prepared_h_ = h;
   // Each group's rigid_below: its short strands take inverse mass 0 at every vertex, the others the asset's (the GPU
   // applies the same rule as it integrates, strand_rigid in common.glsl).

@@ -48,6 +48,21 @@ void warn_if_below_recommended_rate(Context& ctx, const TvkInstance_T& inst, con
               call, static_cast<double>(inst.settings.time.step_rate), static_cast<double>(least), n);
 }
 
+// The settings with a rate left to the model replaced by the model's for strands of n vertices.
+TvkSimSettings resolved_settings(const TvkSimSettings& settings, uint32_t n) {
+  namespace model = tressvk::model;
+  return model::resolve_settings(settings, model::resolve_model(settings.model), n);
+}
+
+TvkSimModel model_enum(tressvk::model::StrandModel m) {
+  switch (m) {
+    case tressvk::model::StrandModel::kConservative: return TVK_SIM_MODEL_CONSERVATIVE;
+    case tressvk::model::StrandModel::kCompliant: return TVK_SIM_MODEL_COMPLIANT;
+    case tressvk::model::StrandModel::kFollowTheLeader: break;
+  }
+  return TVK_SIM_MODEL_FOLLOW_THE_LEADER;
+}
+
 // Owns an instance under construction: a failure anywhere frees what was made, at once (nothing was recorded).
 struct DestroyNow {
   void operator()(TvkInstance_T* inst) const { destroy_instance_now(inst, false); }
@@ -137,9 +152,10 @@ TvkResult create_instance_resources(Context& ctx, TvkInstance_T& inst) {
 }
 
 TvkResult check_params(Context& ctx, const TvkSimParams& p, const char* what) {
-  // The model's conversion validates every field and names the one at fault.
+  // The model's conversion validates every field and names the one at fault (the ranges are every model's).
   try {
-    (void)tressvk::model::to_group_step(p, 1.0 / 120.0, 0.0, 1.0);
+    namespace model = tressvk::model;
+    (void)model::to_group_step(model::resolve_params(p, model::StrandModel::kFollowTheLeader), 1.0 / 120.0, 0.0, 1.0);
   } catch (const std::exception& e) {
     return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "%s: %s", what, e.what());
   }
@@ -173,10 +189,12 @@ TvkResult tressvk_create_instance(TvkContext context, const TvkInstanceCreateInf
     std::unique_ptr<TvkInstance_T, DestroyNow> inst(new TvkInstance_T());
     inst->ctx = &ctx;
     inst->asset = info->asset;
-    inst->settings = settings;
+    // The instance keeps its settings resolved (a rate left to the model is the model's); its parameters as the host
+    // gave them, resolved as each frame converts them, so that a change of model changes what they resolve to.
+    inst->settings = resolved_settings(settings, info->asset->rest.vertices_per_strand);
     inst->params.assign(std::max<size_t>(1, info->asset->cpu.groups.size()), params);
     // The planner checks the settings and names the field at fault (e.g. time.step_rate); it throws.
-    inst->planner = std::make_unique<tressvk::model::FramePlanner>(settings, info->asset->cpu.origin,
+    inst->planner = std::make_unique<tressvk::model::FramePlanner>(inst->settings, info->asset->cpu.origin,
                                                                         info->asset->rest.asset_bone_count);
     inst->planner->set_bone_source(info->asset->rest.bone_source);
     if (TvkResult r = create_instance_resources(ctx, *inst); r != TVK_SUCCESS) return r;
@@ -215,13 +233,37 @@ TvkResult tressvk_set_sim_settings(TvkInstance instance, const TvkSimSettings* s
   Context& ctx = *instance->ctx;
   return tressvk::guarded(ctx, "tressvk_set_sim_settings", [&]() -> TvkResult {
     if (!settings) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_set_sim_settings: settings is NULL");
-    instance->planner->set_settings(*settings);  // throws naming the field; the settings stay as they were
-    const bool changed = settings->model != instance->settings.model ||
-                         settings->time.step_rate != instance->settings.time.step_rate;
-    instance->settings = *settings;
+    const TvkSimSettings resolved = resolved_settings(*settings, instance->asset->rest.vertices_per_strand);
+    instance->planner->set_settings(resolved);  // throws naming the field; the settings stay as they were
+    const bool changed = resolved.model != instance->settings.model ||
+                         resolved.time.step_rate != instance->settings.time.step_rate;
+    instance->settings = resolved;
     if (changed) warn_if_below_recommended_rate(ctx, *instance, "tressvk_set_sim_settings");
     return TVK_SUCCESS;
   });
+}
+
+TvkResult tressvk_get_sim_settings(TvkInstance instance, TvkSimSettings* out_settings) {
+  if (!instance)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_sim_settings: instance is NULL");
+  if (!out_settings)
+    return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_sim_settings: out_settings is NULL");
+  *out_settings = instance->settings;
+  out_settings->model = model_enum(tressvk::model::resolve_model(instance->settings.model));
+  return TVK_SUCCESS;
+}
+
+TvkResult tressvk_get_sim_params(TvkInstance instance, uint32_t group, TvkSimParams* out_params) {
+  if (!instance)
+    return tressvk::fail_without_context(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_sim_params: instance is NULL");
+  Context& ctx = *instance->ctx;
+  if (!out_params) return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_sim_params: out_params is NULL");
+  if (group >= instance->params.size())
+    return ctx.fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_sim_params: group %u out of range (asset has %zu)", group,
+                    instance->params.size());
+  namespace model = tressvk::model;
+  *out_params = model::resolve_params(instance->params[group], model::resolve_model(instance->settings.model));
+  return TVK_SUCCESS;
 }
 
 TvkResult tressvk_set_draw_strands(TvkInstance instance, uint32_t strands) {

@@ -314,10 +314,12 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   const VkDeviceSize base = VkDeviceSize{slice} * inst.slice_size;
   auto* ring = static_cast<std::byte*>(inst.ring.mapped);
   std::vector<sim::GroupParams> groups(inst.params.size());
-  const bool compliant = model::is_compliant_family(model::resolve_model(inst.settings.model));
+  const model::StrandModel strand_model = model::resolve_model(inst.settings.model);
+  const bool compliant = model::is_compliant_family(strand_model);
   for (size_t g = 0; g < inst.params.size(); ++g) {
-    const model::GroupStep step = model::to_group_step(inst.params[g], h, inst.asset->rest.asset_tip_separation,
-                                                            inst.asset->rest.median_length);
+    const model::GroupStep step =
+        model::to_group_step(model::resolve_params(inst.params[g], strand_model), h,
+                             inst.asset->rest.asset_tip_separation, inst.asset->rest.median_length);
     groups[g] = compliant ? model::to_gpu_compliant(step, h) : model::to_gpu(step);
     std::memcpy(ring + base + inst.groups_offset + g * sizeof(sim::GroupParams), &groups[g], sizeof(sim::GroupParams));
   }

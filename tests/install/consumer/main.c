@@ -18,8 +18,10 @@ int main(void) {
     /* The default initialisers compile as C and give a valid still frame. */
     TvkSimFrame frame = TVK_SIM_FRAME_DEFAULT_INIT;
     TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
+    TvkSimSettings settings = TVK_SIM_SETTINGS_DEFAULT_INIT;
     if (frame.dt != 0.0f || frame.transform.rotation[3] != 1.0 || frame.bones || frame.capsule_count != 0u ||
-        frame.wind.strength != 0.0f || params.local_iterations != 2u) {
+        frame.wind.strength != 0.0f || params.local_iterations != TVK_ITERATIONS_BY_MODEL ||
+        settings.time.step_rate != TVK_STEP_RATE_BY_MODEL) {
       fprintf(stderr, "consumer (C): unexpected default initialisers\n");
       return 1;
     }

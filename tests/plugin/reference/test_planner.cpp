@@ -220,7 +220,8 @@ TEST_CASE("planner: to_gpu keeps the layout the shaders read", "[reference][plan
   CHECK(gpu.steps[1].flags[1] == 1u);
   CHECK(gpu.steps[1].gravity[1] == Catch::Approx(-9.81 / (120.0 * 120.0)).epsilon(1e-6));
   CHECK(gpu.steps[1].capsule[1][3] == 0.05f);
-  GroupStep g = to_group_step(default_params(), 1.0 / 120.0, 0.0, 1.0);
+  GroupStep g = to_group_step(resolve_params(default_params(), StrandModel::kFollowTheLeader), 1.0 / 120.0, 0.0, 1.0);
+  CHECK(g.local_iterations == 2u);
   CHECK(g.velocity_keep == Catch::Approx(std::exp(-0.08 * 0.5)));
   CHECK(g.max_step == Catch::Approx(50.0 / 120.0));
   CHECK(g.vsp_threshold == Catch::Approx(100.0 / (120.0 * 120.0)));
@@ -312,9 +313,52 @@ TEST_CASE("planner: bad input is rejected with the field named", "[reference][pl
   f = still_frame(1.0 / 60.0);
   f.transform.rotation[3] = 0.0;
   CHECK_THROWS_WITH(planner.plan(f), Catch::Matchers::ContainsSubstring("transform.rotation"));
-  TvkSimParams p = default_params();
+  TvkSimParams p = resolve_params(default_params(), StrandModel::kFollowTheLeader);
   p.length_iterations = 0;
   CHECK_THROWS_WITH(to_group_step(p, 1.0 / 120.0, 0.0, 1.0), Catch::Matchers::ContainsSubstring("length_iterations"));
+  // A count left to the model is resolved before it is converted: unresolved, it is refused, not run as 2^32 - 1.
+  CHECK_THROWS_WITH(to_group_step(default_params(), 1.0 / 120.0, 0.0, 1.0),
+                    Catch::Matchers::ContainsSubstring("local_iterations"));
+}
+
+// The settings a host leaves to the model (TVK_STEP_RATE_BY_MODEL, TVK_ITERATIONS_BY_MODEL, both the defaults) are
+// each model's own: follow-the-leader keeps 240 Hz and 2 iterations, the settings its look is tuned at, and the
+// conservative model gets the 1 iteration at 120 Hz it is recommended at, 240 Hz for strands of more than 64
+// vertices (docs/accuracy.md, "Which model, at which rate"). A value the host sets is never changed.
+TEST_CASE("planner: what the settings leave to the model resolves to the model's rate and iterations",
+          "[reference][planner]") {
+  const TvkSimSettings defaults = TVK_SIM_SETTINGS_DEFAULT_INIT;
+  const TvkSimParams params = TVK_SIM_PARAMS_DEFAULT_INIT;
+  CHECK(defaults.time.step_rate == TVK_STEP_RATE_BY_MODEL);
+  CHECK(params.local_iterations == TVK_ITERATIONS_BY_MODEL);
+  struct Row {
+    StrandModel model;
+    uint32_t n;
+    float rate;
+    uint32_t iterations;
+  };
+  const Row rows[] = {{StrandModel::kFollowTheLeader, 32, 240.0f, 2u}, {StrandModel::kFollowTheLeader, 128, 240.0f, 2u},
+                      {StrandModel::kCompliant, 32, 240.0f, 2u},       {StrandModel::kConservative, 16, 120.0f, 1u},
+                      {StrandModel::kConservative, 64, 120.0f, 1u},    {StrandModel::kConservative, 65, 240.0f, 1u},
+                      {StrandModel::kConservative, 128, 240.0f, 1u}};
+  for (const Row& r : rows) {
+    CAPTURE(static_cast<int>(r.model), r.n);
+    CHECK(resolve_settings(defaults, r.model, r.n).time.step_rate == r.rate);
+    CHECK(resolve_params(params, r.model).local_iterations == r.iterations);
+    TvkSimSettings set = defaults;
+    set.time.step_rate = 60.0f;
+    TvkSimParams set_params = params;
+    set_params.local_iterations = 3;
+    CHECK(resolve_settings(set, r.model, r.n).time.step_rate == 60.0f);
+    CHECK(resolve_params(set_params, r.model).local_iterations == 3u);
+    set_params.local_iterations = 0;  // no local shape stays no local shape
+    CHECK(resolve_params(set_params, r.model).local_iterations == 0u);
+    // Everything else passes through unchanged.
+    CHECK(resolve_settings(defaults, r.model, r.n).time.max_steps_per_frame == defaults.time.max_steps_per_frame);
+    CHECK(resolve_params(params, r.model).length_iterations == params.length_iterations);
+  }
+  // The planner is handed resolved settings: a rate still left to the model is refused by name.
+  CHECK_THROWS_WITH(FramePlanner(defaults, {0, 0, 0}, 0), Catch::Matchers::ContainsSubstring("time.step_rate"));
 }
 
 TEST_CASE("planner: every non-finite host number is refused naming its field", "[reference][planner]") {

@@ -33,6 +33,27 @@ TEST_CASE("reference: the rest pose is a fixed point without gravity", "[referen
   }
 }
 
+// A Simulator resolves what the settings leave to the model as an instance does (planner.hpp, resolve_settings), at
+// construction and again when set_model changes the model; a rate the settings give stays.
+TEST_CASE("reference: a rate left to the model follows the model it runs", "[reference][sim]") {
+  const auto a32 = groom("curly", 4, 1);
+  const auto a128 = groom("long128", 4, 1);
+  Simulator sim = make_sim(a32);  // the defaults: the rate and iterations left to the model
+  if (sim.model() == Simulator::SimModel::kFollowTheLeader) CHECK(sim.planner().step_length() == 1.0 / 240.0);
+  sim.set_model(Simulator::SimModel::kConservative);
+  CHECK(sim.planner().step_length() == 1.0 / 120.0);
+  sim.set_model(Simulator::SimModel::kFollowTheLeader);
+  CHECK(sim.planner().step_length() == 1.0 / 240.0);
+  Simulator long_sim = make_sim(a128);
+  long_sim.set_model(Simulator::SimModel::kConservative);
+  CHECK(long_sim.planner().step_length() == 1.0 / 240.0);  // more than 64 vertices
+  TvkSimSettings at60 = default_settings();
+  at60.time.step_rate = 60.0f;
+  Simulator set = make_sim(a32, default_params(), at60);
+  set.set_model(Simulator::SimModel::kConservative);
+  CHECK(set.planner().step_length() == 1.0 / 60.0);
+}
+
 TEST_CASE("reference: pinned roots follow the head exactly", "[reference][sim]") {
   auto a = groom("straight", 32);
   Simulator sim = make_sim(a);

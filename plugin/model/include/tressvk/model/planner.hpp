@@ -164,7 +164,8 @@ struct GroupStep {
   double rigid_below = 0;      // m, resolved against the asset's median strand length (0 = none)
 };
 // Throws std::invalid_argument for out-of-range values (naming the field). asset_median_length: the asset's median
-// strand length (ModelRest::median_length), which a negative rigid_below is a fraction of.
+// strand length (ModelRest::median_length), which a negative rigid_below is a fraction of. Takes resolved parameters
+// (resolve_params): TVK_ITERATIONS_BY_MODEL is refused here.
 GroupStep to_group_step(const TvkSimParams& params, double h, double asset_tip_separation, double asset_median_length);
 
 // The conversions the host uploads: everything the shaders read per frame.
@@ -189,6 +190,17 @@ enum class StrandModel { kFollowTheLeader, kCompliant, kConservative };
 // when unset), so that a test run with the variable set compares like with like on the GPU and the reference.
 StrandModel resolve_model(TvkSimModel model);
 inline bool is_compliant_family(StrandModel m) { return m != StrandModel::kFollowTheLeader; }
+// What TVK_STEP_RATE_BY_MODEL and TVK_ITERATIONS_BY_MODEL mean for a model and strands of n vertices: the rate and
+// local iteration count each model is made for (docs/accuracy.md, "Which model, at which rate"): follow-the-leader
+// and compliant 240 Hz with 2 iterations (the settings follow-the-leader's look is tuned at); conservative 1
+// iteration (its shape hardly depends on the count) at 120 Hz for up to 64 vertices, 240 Hz above (where 120 Hz
+// fails the 128-vertex hard case).
+float model_step_rate(StrandModel m, uint32_t vertices_per_strand);
+uint32_t model_local_iterations(StrandModel m);
+// The settings and parameters with every "by model" value replaced by the model's; anything else as given. Both
+// sides resolve before they plan or convert, so an instance and a reference Simulator of the same model agree.
+TvkSimSettings resolve_settings(const TvkSimSettings& settings, StrandModel m, uint32_t vertices_per_strand);
+TvkSimParams resolve_params(const TvkSimParams& params, StrandModel m);
 // kConservative's compliance per edge: compliant_bend_alpha_base x this x (31 a / L)^4; its damping time: the
 // compliant model's per-edge time x kConservativeDampingScale (reference simulator.cpp, lanes_compliant.glsl).
 inline constexpr double kConservativeCalibration = 0.080;

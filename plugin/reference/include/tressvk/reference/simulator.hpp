@@ -69,8 +69,10 @@ class Simulator {
   // calibration is its own (the same cantilever sag at 240 Hz, 2 iterations, 32 vertices).
   enum class LengthModel { kFollowTheLeader, kNewmark, kCompliant, kConservative };
   using SimModel = LengthModel;
-  void set_length_model(LengthModel m) { length_model_ = m; }
-  void set_model(SimModel m) { length_model_ = m; }
+  // A change of model re-resolves what the settings and parameters leave to it (TVK_STEP_RATE_BY_MODEL,
+  // TVK_ITERATIONS_BY_MODEL), as an instance's tressvk_set_sim_settings does; kNewmark takes follow-the-leader's.
+  void set_length_model(LengthModel m) { set_model(m); }
+  void set_model(SimModel m);
   SimModel model() const { return length_model_; }
   const std::vector<TvkSimParams>& params() const { return params_; }
   const ModelRest& rest() const { return rest_; }
@@ -116,6 +118,7 @@ class Simulator {
   Quat skin_delta(const Substep& step, uint32_t g) const;
   Quat skin_delta_before(const Substep& step, uint32_t g) const;
   Quat current_root_frame(const Substep& step, uint32_t g) const;
+  StrandModel strand_model() const;  // what the settings' "by model" values resolve by
   bool compliant_model() const {
     return length_model_ == LengthModel::kCompliant || length_model_ == LengthModel::kConservative;
   }
@@ -125,7 +128,8 @@ class Simulator {
 
   ModelRest rest_;                     // inv_mass: with each group's rigid_below applied
   std::vector<double> asset_inv_mass_;  // the asset's own pins
-  std::vector<TvkSimParams> params_;
+  TvkSimSettings host_settings_;       // as given: the planner holds them resolved for the model
+  std::vector<TvkSimParams> params_;   // as given: steps_params_ are resolved for the model
   std::vector<GroupStep> steps_params_;
   double prepared_h_ = -1;
   FramePlanner planner_;
