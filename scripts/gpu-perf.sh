@@ -60,6 +60,24 @@ table() {
   done
 }
 
+# BY_MODEL=1: each model at its own rate and iterations (no --step-rate or --local-iterations: what the settings leave
+# to the model, docs/integration.md "Each model at its own rate"): Ratboy, curly 1 M and 4 M on follow-the-leader and
+# the conservative model, then the conservative model's hard cases at its own settings. Then stop.
+if [ "${BY_MODEL:-0}" = 1 ]; then
+  {
+    table_header
+    for path in default conservative; do
+      [ -f "$MOHAWK" ] && perf "bymodel-ratboy-$path" "$path" --asset "$MOHAWK" $T
+      perf "bymodel-curly1M-$path" "$path" --builtin curly --guides 32768 $T
+      perf "bymodel-curly4M-$path" "$path" --builtin curly --guides 131072 $T
+    done
+  } | tee "$OUT/bymodel.md"
+  "$BENCH" hardcases --model conservative --converged-rate 960 --json "$OUT/bymodel-hardcases.json" |
+    tee "$OUT/bymodel-hardcases.md" || true
+  echo "done in $SECONDS s: $OUT"
+  exit 0
+fi
+
 # MODELS=1: only the kernel table (PATHS, default: follow-the-leader's default choice, its one-thread kernel, the
 # compliant model's lane kernel, each with its step error against the reference of its own model), then stop.
 if [ "${MODELS:-0}" = 1 ]; then
