@@ -615,7 +615,9 @@ TEST_CASE("reference: hosts at 144 and 165 Hz move the hair at the steps' true t
     double median = 0;
   };
   auto run = [&](uint32_t host_hz) {
-    Simulator sim = make_sim(a);
+    TvkSimSettings s = default_settings();
+    s.time.step_rate = 240.0f;  // the time policy at 240 Hz steps, whatever rate the model would take
+    Simulator sim = make_sim(a, default_params(), s);
     Run r;
     r.median = sim.median_strand_length();
     const float dt = 1.0f / static_cast<float>(host_hz);
@@ -679,6 +681,7 @@ TEST_CASE("reference: a host at a sustained 24 fps simulates in real time", "[re
   auto turn = [](double t) { return 0.5 * std::sin(2.0 * std::numbers::pi * 1.2 * t); };
   auto run = [&](uint32_t host_hz, uint32_t sustained) {
     TvkSimSettings s = TVK_SIM_SETTINGS_DEFAULT_INIT;
+    s.time.step_rate = 240.0f;  // 24 fps is 10 steps of 240 Hz: over the cap of 8, whatever rate the model would take
     s.time.max_steps_sustained = sustained;
     Simulator sim = make_sim(a, default_params(), s);
     std::vector<std::vector<Vec3>> x;  // positions after each frame
