@@ -86,7 +86,7 @@ def main():
         ax.grid(True, which="both", alpha=0.3)
         ax.scatter([], [], color="gray", marker="o", label="1 local iteration (label: Hz / iterations)")
         ax.scatter([], [], color="gray", marker="s", label="2 local iterations")
-        ax.scatter([], [], facecolors="none", edgecolors="black", s=90, label="the model's default (240 Hz / 2)")
+        ax.scatter([], [], facecolors="none", edgecolors="black", s=90, label="the model's own setting (the sweep's default row)")
         ax.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
     fig.savefig(png, dpi=110)

@@ -75,6 +75,7 @@ class DemoApp {
   TvkContext plugin() const { return plugin_.get(); }
   const TvkAssetInfo& asset_info() const { return hair_->info(); }
   TvkRenderer renderer() const { return hair_->renderer(); }
+  TvkInstance instance() const { return hair_->instance(); }
   // TVK_RASTER_* flags of the compute path for the frames recorded from now on (tressvk-bench, tests).
   void set_raster_flags(uint32_t flags) { options_.raster_flags = flags; }
   // The parameters in effect (the file's, completed with the scene's and the command line's choices).

@@ -76,6 +76,13 @@ int run(const tressvk::demo::Options& options) {
                 app.scene().head.vertices.size() / 3, app.scene().capsules.size(),
                 demo::animation_name(options.animate), static_cast<double>(options.wind),
                 options.shadows ? "on" : "off");
+    // What the instance runs, with what the parameters leave to the model resolved (tressvk_get_sim_settings).
+    TvkSimSettings ran{};
+    TvkSimParams ran_params{};
+    if (tressvk_get_sim_settings(app.instance(), &ran) == TVK_SUCCESS &&
+        tressvk_get_sim_params(app.instance(), 0, &ran_params) == TVK_SUCCESS)
+      std::printf("simulation: %s model, %g Hz steps, %u local iteration(s)\n", demo::sim_model_name(ran.model).c_str(),
+                  static_cast<double>(ran.time.step_rate), ran_params.local_iterations);
     if (!options.save_params.empty()) {
       demo::save_params(options.save_params, app.params());
       std::printf("parameters: %s\n", std::filesystem::absolute(options.save_params).c_str());
