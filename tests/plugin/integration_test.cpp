@@ -101,6 +101,14 @@ TEST_CASE("docs/integration.md: the walk-through runs under synchronization vali
   TvkInstance head = nullptr;
   REQUIRE(tressvk_create_instance(ctx, &ci, &head) == TVK_SUCCESS);
   REQUIRE(tressvk_set_sim_params(head, TVK_ALL_GROUPS, &params) == TVK_SUCCESS);
+  // What it runs: the rate and iterations the defaults leave to the model, resolved.
+  TvkSimSettings runs;
+  TvkSimParams group0;
+  REQUIRE(tressvk_get_sim_settings(head, &runs) == TVK_SUCCESS);
+  REQUIRE(tressvk_get_sim_params(head, 0, &group0) == TVK_SUCCESS);
+  CHECK(runs.time.step_rate >= 30.0f);
+  CHECK(runs.model != TVK_SIM_MODEL_DEFAULT);
+  CHECK((group0.local_iterations >= 1u && group0.local_iterations <= TVK_MAX_ITERATIONS));
 
   // ---- 6 (creation). A renderer for the main pass and the shadow map, prewarmed.
   TvkRendererCreateInfo ri = {};
