@@ -1,6 +1,12 @@
 #include "frame_timing.hpp"
 
+#include "tressvk_bench_spirv.h"
+
+#include <tressvk/engine/buffer.hpp>
+#include <tressvk/engine/descriptors.hpp>
 #include <tressvk/engine/frame_loop.hpp>
+#include <tressvk/engine/pipeline.hpp>
+#include <tressvk/engine/sync.hpp>
 #include <tressvk/host/glue.hpp>
 
 #include <algorithm>
@@ -9,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -103,6 +110,46 @@ class PlanThreads {
   bool stop_ = false;  // written before the barrier the workers wait on, read after it
 };
 
+// The clock probe (shaders/clock.comp): one workgroup's chain of kClockIterations dependent multiply-adds, recorded
+// in every warm-up frame of a timed warm-up before the frame's own timestamps. About 40 us on an NVIDIA H100 at its
+// working clock, 0.2 ms on lavapipe.
+constexpr uint32_t kClockIterations = 20000;
+struct ClockProbe {
+  explicit ClockProbe(const engine::Device& dev)
+      : sink(engine::create_buffer(dev, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, engine::MemoryUsage::device_local)),
+        set_layout(engine::create_set_layout(dev, {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}})),
+        pool(dev, 1) {
+    set = pool.allocate(set_layout.get());
+    engine::write_buffer_descriptor(dev, set, 0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sink.handle());
+    engine::ComputePipelineDesc desc;
+    desc.spirv = k_spv_clock_comp;
+    desc.layout.set_layouts = {set_layout.get()};
+    desc.layout.push_constant_size = 2 * sizeof(uint32_t);
+    desc.debug_name = "tressvk-bench clock probe";
+    pipeline = engine::create_compute_pipeline(dev, desc);
+  }
+  void record(VkCommandBuffer cmd) const {
+    // After everything before it (the probe times the GPU alone), and its write-never sink after the last probe's.
+    const engine::ResourceState before{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT},
+        after{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+    engine::cmd_memory_barrier(cmd, before, after);
+    pipeline.cmd_bind(cmd);
+    pipeline.cmd_bind_set(cmd, 0, set);
+    const uint32_t push[2] = {kClockIterations, 0x3f800000u};  // (1.0f)
+    pipeline.cmd_push(cmd, push);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    // The simulation's own entry barrier orders it after earlier compute work.
+  }
+  engine::Buffer sink;
+  engine::DeviceHandle<VkDescriptorSetLayout> set_layout;
+  engine::DescriptorPool pool;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  engine::Pipeline pipeline;
+};
+
+// The fastest the probe has run in this process: a warm-up ends only once the probe is within its tolerance of it.
+double g_fastest_clock_probe_ms = 0;
+
 }  // namespace
 
 FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<const TvkInstance> instances,
@@ -115,12 +162,35 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
   uint64_t steps_total = 0, frames_total = 0;
   uint32_t first_timed = UINT32_MAX;  // known once the warm-up ends
   std::vector<double> warm_ms;        // the warm-up frames' GPU times, as they complete
-  engine::FrameLoop loop(dev, in_flight, 2, [&](const engine::FrameLoop::Frame& fr) {
+  std::vector<double> probe_ms;       // the warm-up frames' clock probes, as they complete
+  // A warm-up that waits for the frame time to settle also waits for the GPU's clock (ClockProbe).
+  const bool timed_warmup = warmup.max_ms > 0;
+  std::unique_ptr<ClockProbe> probe;
+  if (timed_warmup) probe = std::make_unique<ClockProbe>(dev);
+  engine::FrameLoop loop(dev, in_flight, 4, [&](const engine::FrameLoop::Frame& fr) {
     const auto ms = fr.timestamps->elapsed_ms(0, 1);
     if (!ms) return;
-    if (fr.number < first_timed) warm_ms.push_back(*ms);
-    else if (fr.number < first_timed + frames) out.frame_ms.push_back(*ms);
+    if (fr.number < first_timed) {
+      warm_ms.push_back(*ms);
+      if (const auto p = probe ? fr.timestamps->elapsed_ms(2, 3) : std::nullopt; p) probe_ms.push_back(*p);
+    } else if (fr.number < first_timed + frames) {
+      out.frame_ms.push_back(*ms);
+    }
   });
+  // The median clock probe of the newest (up to 8) warm-up frames, the process's fastest updated with it; 0: none.
+  const auto probe_now = [&] {
+    if (probe_ms.empty()) return 0.0;
+    const double now = median_of({probe_ms.end() - std::min<std::ptrdiff_t>(8, std::ssize(probe_ms)), probe_ms.end()});
+    if (g_fastest_clock_probe_ms <= 0 || now < g_fastest_clock_probe_ms) g_fastest_clock_probe_ms = now;
+    return now;
+  };
+  // The GPU at its working clock: 8 probes in, within the tolerance of the fastest (no timestamps: the frame times
+  // decide alone).
+  const auto clock_up = [&] {
+    if (!probe || !dev.timestamps_supported()) return true;
+    if (probe_ms.size() < 8) return false;
+    return probe_now() <= g_fastest_clock_probe_ms * (1.0 + warmup.tolerance);
+  };
   const auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
   };
@@ -146,6 +216,11 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
       if (first_timed != UINT32_MAX && f > first_timed + in_flight && f <= first_timed + frames)
         out.sim_ms.push_back(ms);
     }
+    if (probe && first_timed == UINT32_MAX) {
+      fr.timestamps->cmd_write(fr.cmd, 2, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      probe->record(fr.cmd);
+      fr.timestamps->cmd_write(fr.cmd, 3, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    }
     fr.timestamps->cmd_write(fr.cmd, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     const auto h1 = std::chrono::steady_clock::now();
     host::check_tvk(host::record_simulate(ctx, fr.cmd, instances), ctx, "tressvk_cmd_simulate");
@@ -157,6 +232,11 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
     }
     out.dispatches = std::max(out.dispatches, tressvk_get_recorded_dispatches(ctx));
     fr.timestamps->cmd_write(fr.cmd, 1, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    if (probe && first_timed != UINT32_MAX) {
+      // Every query of the slot written, probe or not: reading the slot's results waits for all of them.
+      fr.timestamps->cmd_write(fr.cmd, 2, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      fr.timestamps->cmd_write(fr.cmd, 3, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    }
     loop.end();
   };
   const auto t_start = std::chrono::steady_clock::now();
@@ -165,15 +245,19 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
     if (f >= warmup.frames) {
       const double elapsed = since(t_start);
       if (elapsed >= warmup.max_ms) {
-        out.warmup_settled = warmup.max_ms <= 0 || settled(warm_ms, warmup.window_ms, warmup.tolerance);
+        out.warmup_settled = warmup.max_ms <= 0 || (settled(warm_ms, warmup.window_ms, warmup.tolerance) && clock_up());
         break;
       }
       // (tested every 32 frames: a window of small frames holds thousands)
-      if (elapsed >= warmup.min_ms && f % 32u == 0u && settled(warm_ms, warmup.window_ms, warmup.tolerance)) break;
+      if (elapsed >= warmup.min_ms && f % 32u == 0u && settled(warm_ms, warmup.window_ms, warmup.tolerance) &&
+          clock_up())
+        break;
     }
     record(f);
   }
   first_timed = f;
+  out.clock_probe_ms = probe_now();
+  out.clock_probe_fastest_ms = probe_ms.empty() ? 0.0 : g_fastest_clock_probe_ms;
   out.warmup_frames = f;
   out.warmup_ms = since(t_start);
   const auto t0 = std::chrono::steady_clock::now();

@@ -16,7 +16,8 @@ namespace tressvk::bench {
 // How long time_frames runs frames before it times them: at least `frames` frames and `min_ms` of wall time, then
 // until the GPU time per frame has settled: the median frame of the last `window_ms` of GPU work within `tolerance`
 // of the window's before it (a GPU's clock can take a second to climb back after the GPU idled for a moment, and a
-// timed window on the climb reads slow), or `max_ms`, whichever comes first. min_ms = max_ms = 0: frames only.
+// timed window on the climb reads slow) and a clock probe within `tolerance` of its fastest in this process
+// (FrameTimes::clock_probe_ms), or `max_ms`, whichever comes first. min_ms = max_ms = 0: frames only.
 struct WarmUp {
   uint32_t frames = 0;
   double min_ms = 0, max_ms = 0;
@@ -37,6 +38,11 @@ struct FrameTimes {
   uint32_t warmup_frames = 0;    // frames run before the timed ones
   double warmup_ms = 0;          // their wall time
   bool warmup_settled = true;    // false: WarmUp::max_ms ran out before the frame time settled
+  // A timed warm-up (WarmUp::max_ms > 0) also times a clock probe (shaders/clock.comp) in each warm-up frame and ends
+  // only once the probe runs within WarmUp::tolerance of the fastest it has run in this process: the GPU at its working
+  // clock. The probe's median over the last warm-up frames, and that fastest (0: no probe).
+  double clock_probe_ms = 0;
+  double clock_probe_fastest_ms = 0;
 };
 
 // Records the warm-up frames and then `frames` timed ones, frame_of(0, 1, ...), into one frame loop of `in_flight`

@@ -352,6 +352,8 @@ int execute_perf_command(const PerfCommand& given) {
         {"warmup_frames", times.warmup_frames},
         {"warmup_ms", times.warmup_ms},
         {"warmup_settled", times.warmup_settled},
+        {"clock_probe_ms", times.clock_probe_ms},
+        {"clock_probe_fastest_ms", times.clock_probe_fastest_ms},
         {"frames_in_flight", cmd.frames_in_flight},
         {"passes", pass_names},
         {"dispatches_per_frame", dispatches},
@@ -385,7 +387,7 @@ int execute_perf_command(const PerfCommand& given) {
   }
 
   if (!out["warmup_settled"].get<bool>())
-    std::fprintf(stderr, "tressvk-bench perf: the frame time had not settled after %.0f ms of warm-up; timed anyway\n",
+    std::fprintf(stderr, "tressvk-bench perf: the frame time (or the GPU clock) had not settled after %.0f ms of warm-up; timed anyway\n",
                  out["warmup_ms"].get<double>());
   if (cmd.table_row) {
     // | groom | guide vertices | step rate | path (kernel) | us/frame | p99 | GB/s (copy) | dispatches | step error |

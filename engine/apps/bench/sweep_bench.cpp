@@ -80,7 +80,7 @@ std::string csv_of(const nlohmann::json& rows) {
       "error_guides", "is_default", "gpu_ms_per_frame", "gpu_ms_per_frame_p99", "steps_per_frame",
       "dispatches_per_frame", "model_error_rms", "model_error_max", "step_error_max", "stretch_max", "stretch_mean",
       "penetration_depth_rel", "post_contact_speed_mps", "nan_strands", "exploded_strands", "nonfinite_resets",
-      "warmup_ms"};
+      "warmup_ms", "clock_probe_ms", "clock_probe_fastest_ms"};
   std::string out;
   for (const char* c : kColumns) out += std::string(out.empty() ? "" : ",") + c;
   out += "\n";
@@ -358,11 +358,13 @@ int execute_sweep_command(const SweepCommand& given) {
         r["dispatches_per_frame"] = t.dispatches;
         r["warmup_ms"] = t.warmup_ms;
         r["warmup_settled"] = t.warmup_settled;
+        r["clock_probe_ms"] = t.clock_probe_ms;
+        r["clock_probe_fastest_ms"] = t.clock_probe_fastest_ms;
         std::printf("%-7s %3.0f Hz  local %u  length %u  N %3u%s  %.4f ms  model rms %.3g max %.3g  step %.2g  stretch %.2g%s\n",
                     scene.c_str(), c.rate, c.local, c.length, c.n, c == def ? "*" : " ", r["gpu_ms_per_frame"].get<double>(),
                     r["model_error_rms"].get<double>(), r["model_error_max"].get<double>(),
                     r["step_error_max"].get<double>(), r["stretch_max"].get<double>(),
-                    t.warmup_settled ? "" : "  (frame time still changing after --warmup-ms-max)");
+                    t.warmup_settled ? "" : "  (frame time or GPU clock still changing after --warmup-ms-max)");
         std::fflush(stdout);
       }
     }
