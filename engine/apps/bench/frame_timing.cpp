@@ -167,7 +167,8 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
   const bool timed_warmup = warmup.max_ms > 0;
   std::unique_ptr<ClockProbe> probe;
   if (timed_warmup) probe = std::make_unique<ClockProbe>(dev);
-  engine::FrameLoop loop(dev, in_flight, 4, [&](const engine::FrameLoop::Frame& fr) {
+  // (Reading a slot's results waits for every query in it: with a probe each frame writes all 4, else 2 are made.)
+  engine::FrameLoop loop(dev, in_flight, probe ? 4u : 2u, [&](const engine::FrameLoop::Frame& fr) {
     const auto ms = fr.timestamps->elapsed_ms(0, 1);
     if (!ms) return;
     if (fr.number < first_timed) {
