@@ -111,8 +111,8 @@ class PlanThreads {
 };
 
 // The clock probe (shaders/clock.comp): one workgroup's chain of kClockIterations dependent multiply-adds, recorded
-// in every warm-up frame of a timed warm-up before the frame's own timestamps. About 40 us on an NVIDIA H100 at its
-// working clock, 0.2 ms on lavapipe.
+// in every warm-up frame of a timed warm-up before the frame's own timestamps. About 76 us on an NVIDIA H100 at its
+// working clock, 0.4 ms on lavapipe.
 constexpr uint32_t kClockIterations = 20000;
 struct ClockProbe {
   explicit ClockProbe(const engine::Device& dev)
@@ -137,8 +137,7 @@ struct ClockProbe {
     pipeline.cmd_bind_set(cmd, 0, set);
     const uint32_t push[2] = {kClockIterations, 0x3f800000u};  // (1.0f)
     pipeline.cmd_push(cmd, push);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    // The simulation's own entry barrier orders it after earlier compute work.
+    vkCmdDispatch(cmd, 1, 1, 1);  // (the simulation's entry barrier orders the frame after it)
   }
   engine::Buffer sink;
   engine::DeviceHandle<VkDescriptorSetLayout> set_layout;

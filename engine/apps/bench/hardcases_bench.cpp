@@ -7,6 +7,7 @@
 #include <tressvk/engine/device.hpp>
 #include <tressvk/host/glue.hpp>
 #include <tressvk/model/model.hpp>
+#include <tressvk/model/planner.hpp>
 #include <tressvk/reference/converged.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>
@@ -122,8 +123,7 @@ int execute_hardcases_command(const HardCasesCommand& cmd) {
     if (cmd.local_iterations > 0) c.params.local_iterations = c.unscaled_params.local_iterations = cmd.local_iterations;
     c.settings.model = cmd.model;
     // What the case leaves to the model becomes the model's for its strands (the table names what ran).
-    TvkSimSettings unscaled_settings = c.settings;
-    resolve_for_model(unscaled_settings, c.unscaled_params, c.unscaled_groom.vertices_per_strand);
+    c.unscaled_params = model::resolve_params(c.unscaled_params, model::resolve_model(c.settings.model));
     resolve_for_model(c.settings, c.params, c.groom.vertices_per_strand);
   }
   nlohmann::json rows = nlohmann::json::array();

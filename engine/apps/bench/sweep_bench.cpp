@@ -10,6 +10,7 @@
 #include <tressvk/engine/device.hpp>
 #include <tressvk/host/glue.hpp>
 #include <tressvk/model/model.hpp>
+#include <tressvk/model/planner.hpp>
 #include <tressvk/reference/converged.hpp>
 #include <tressvk/reference/metrics.hpp>
 #include <tressvk/reference/scenes.hpp>
@@ -210,9 +211,7 @@ int execute_sweep_command(const SweepCommand& given) {
     resolve_for_model(product_settings, product, n);
     def = {product_settings.time.step_rate, product.local_iterations, product.length_iterations, n};
     ref_groom = reference::guide_prefix(make(cmd.reference_vertices), std::min(cmd.error_guides, cmd.guides));
-    TvkSimSettings checked_settings = cmd.settings;
-    TvkSimParams checked = cmd.params;
-    resolve_for_model(checked_settings, checked, n);
+    const TvkSimParams checked = model::resolve_params(cmd.params, model::resolve_model(cmd.settings.model));
     reference::to_group_step(checked, 1.0 / 240.0, ref_groom.tip_separation, 1.0);  // checked as the plugin checks
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: --builtin %s: %s\n", me, cmd.builtin.c_str(), e.what());

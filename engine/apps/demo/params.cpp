@@ -182,16 +182,7 @@ std::string sim_model_name(TvkSimModel model) {
   return "default";
 }
 
-TvkSimModel resolved_sim_model(TvkSimModel model) {
-  switch (model::resolve_model(model)) {
-    case model::StrandModel::kConservative: return TVK_SIM_MODEL_CONSERVATIVE;
-    case model::StrandModel::kCompliant: return TVK_SIM_MODEL_COMPLIANT;
-    case model::StrandModel::kFollowTheLeader: break;
-  }
-  return TVK_SIM_MODEL_FOLLOW_THE_LEADER;
-}
-
-std::string resolved_sim_model_name(TvkSimModel model) { return sim_model_name(resolved_sim_model(model)); }
+std::string resolved_sim_model_name(TvkSimModel model) { return sim_model_name(model::resolved_sim_model(model)); }
 
 std::string params_json(const Params& p) {
   auto v3 = [](const float* a) { return ordered_json::array({shortest(a[0]), shortest(a[1]), shortest(a[2])}); };

@@ -46,7 +46,6 @@ const std::map<std::string, TvkSimModel>& sim_model_names();
 std::string sim_model_name(TvkSimModel model);
 // The model an instance with this setting runs (TVK_SIM_MODEL_DEFAULT resolved through TRESSVK_SIM_MODEL), and its
 // name.
-TvkSimModel resolved_sim_model(TvkSimModel model);
 std::string resolved_sim_model_name(TvkSimModel model);
 
 // Throws ParamsError naming `name` (and the field, or the line and column).

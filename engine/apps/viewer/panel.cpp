@@ -3,6 +3,7 @@
 #include "params.hpp"
 
 #include <tressvk/engine/check.hpp>
+#include <tressvk/model/planner.hpp>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -96,7 +97,7 @@ void Panel::build(demo::DemoApp& app, const demo::FrameReport& frame, Window& wi
     static const char* const kModels[] = {"follow-the-leader", "conservative", "compliant"};
     static const TvkSimModel kModelValues[] = {TVK_SIM_MODEL_FOLLOW_THE_LEADER, TVK_SIM_MODEL_CONSERVATIVE,
                                                TVK_SIM_MODEL_COMPLIANT};
-    const TvkSimModel current = demo::resolved_sim_model(p.settings.model);
+    const TvkSimModel current = model::resolved_sim_model(p.settings.model);
     int model = 0;
     for (int i = 0; i < 3; ++i)
       if (current == kModelValues[i]) model = i;

@@ -569,6 +569,15 @@ StrandModel resolve_model(TvkSimModel model) {
   return from_environment;
 }
 
+TvkSimModel resolved_sim_model(TvkSimModel model) {
+  switch (resolve_model(model)) {
+    case StrandModel::kConservative: return TVK_SIM_MODEL_CONSERVATIVE;
+    case StrandModel::kCompliant: return TVK_SIM_MODEL_COMPLIANT;
+    case StrandModel::kFollowTheLeader: break;
+  }
+  return TVK_SIM_MODEL_FOLLOW_THE_LEADER;
+}
+
 float model_step_rate(StrandModel m, uint32_t vertices_per_strand) {
   if (m == StrandModel::kConservative) return vertices_per_strand > 64u ? 240.0f : 120.0f;
   return 240.0f;

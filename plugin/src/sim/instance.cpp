@@ -54,15 +54,6 @@ TvkSimSettings resolved_settings(const TvkSimSettings& settings, uint32_t n) {
   return model::resolve_settings(settings, model::resolve_model(settings.model), n);
 }
 
-TvkSimModel model_enum(tressvk::model::StrandModel m) {
-  switch (m) {
-    case tressvk::model::StrandModel::kConservative: return TVK_SIM_MODEL_CONSERVATIVE;
-    case tressvk::model::StrandModel::kCompliant: return TVK_SIM_MODEL_COMPLIANT;
-    case tressvk::model::StrandModel::kFollowTheLeader: break;
-  }
-  return TVK_SIM_MODEL_FOLLOW_THE_LEADER;
-}
-
 // Owns an instance under construction: a failure anywhere frees what was made, at once (nothing was recorded).
 struct DestroyNow {
   void operator()(TvkInstance_T* inst) const { destroy_instance_now(inst, false); }
@@ -249,7 +240,7 @@ TvkResult tressvk_get_sim_settings(TvkInstance instance, TvkSimSettings* out_set
   if (!out_settings)
     return instance->ctx->fail(TVK_ERROR_INVALID_ARGUMENT, "tressvk_get_sim_settings: out_settings is NULL");
   *out_settings = instance->settings;
-  out_settings->model = model_enum(tressvk::model::resolve_model(instance->settings.model));
+  out_settings->model = tressvk::model::resolved_sim_model(instance->settings.model);
   return TVK_SUCCESS;
 }
 

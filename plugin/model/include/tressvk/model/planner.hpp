@@ -189,6 +189,8 @@ enum class StrandModel { kFollowTheLeader, kCompliant, kConservative };
 // TVK_SIM_MODEL_DEFAULT the TRESSVK_SIM_MODEL environment variable's model (read once per process; follow-the-leader
 // when unset), so that a test run with the variable set compares like with like on the GPU and the reference.
 StrandModel resolve_model(TvkSimModel model);
+// The same as the public enum: the model TVK_SIM_MODEL_DEFAULT stands for named (what tressvk_get_sim_settings reports).
+TvkSimModel resolved_sim_model(TvkSimModel model);
 inline bool is_compliant_family(StrandModel m) { return m != StrandModel::kFollowTheLeader; }
 // What TVK_STEP_RATE_BY_MODEL and TVK_ITERATIONS_BY_MODEL mean for a model and strands of n vertices: the rate and
 // local iteration count each model is made for (docs/accuracy.md, "Which model, at which rate"): follow-the-leader
