@@ -256,14 +256,16 @@ FrameTimes time_frames(const engine::Device& dev, TvkContext ctx, std::span<cons
     record(f);
   }
   first_timed = f;
-  out.clock_probe_ms = probe_now();
-  out.clock_probe_fastest_ms = probe_ms.empty() ? 0.0 : g_fastest_clock_probe_ms;
   out.warmup_frames = f;
   out.warmup_ms = since(t_start);
   const auto t0 = std::chrono::steady_clock::now();
   for (; f < first_timed + frames; ++f) record(f);
   loop.finish();
   out.wall_ms = since(t0);
+  // Reported once every warm-up frame has completed (a warm-up cut short by WarmUp::max_ms may end before any probe
+  // result is back: the decision above used what was there).
+  out.clock_probe_ms = probe_now();
+  out.clock_probe_fastest_ms = probe_ms.empty() ? 0.0 : g_fastest_clock_probe_ms;
   out.steps_per_frame = frames_total ? double(steps_total) / double(frames_total) : 0;
   return out;
 }
