@@ -59,11 +59,14 @@ struct Tally {
 
   // A measured frame's GPU state against the step reference (reloaded from the previous GPU state, when
   // `step_error_now`) and the free-running one (with opt.trajectory), and its stretch and health.
-  void measure(CompareResult& out, const host::HairState& state, const reference::Simulator& step_ref,
-               const reference::Simulator& traj_ref, bool step_error_now, const CompareOptions& opt,
-               double median_length) {
+  // before: the GPU state the step reference was loaded with (step_error_now), whose sleeping guides it holds.
+  void measure(CompareResult& out, const host::HairState& before, const host::HairState& state,
+               const reference::Simulator& step_ref, const reference::Simulator& traj_ref, bool step_error_now,
+               const CompareOptions& opt, double median_length) {
     if (step_error_now) {
-      const auto e = reference::position_error(std::span<const std::array<double, 3>>(state.positions), step_ref.positions(), median_length);
+      const std::vector<std::array<double, 3>> expected = host::held_where_skipped(before, state, step_ref.positions());
+      const auto e = reference::position_error(std::span<const std::array<double, 3>>(state.positions),
+                                               std::span<const std::array<double, 3>>(expected), median_length);
       step_errors.push_back(e.max_rel);
       out.step_error_max_rel = std::max(out.step_error_max_rel, e.max_rel);
     }
@@ -165,10 +168,11 @@ CompareResult run_compare(const engine::Device& dev, const asset::HairAsset& gro
 
     state_is_previous = false;
     if (!measured(f) && !measured(f + 1)) continue;
+    host::HairState before = std::move(state);
     state = host::read_hair_state(dev, inst);
     state_is_previous = true;
     if (measured(f)) {
-      tally.measure(out, state, step_ref, traj_ref, step_error_now, opt, median_length);
+      tally.measure(out, before, state, step_ref, traj_ref, step_error_now, opt, median_length);
       penetration.add(std::span<const std::array<double, 3>>(state.positions), plan, frame.dt, step_ref.rest(),
                       penetration_frame + 1 == f);
       penetration_frame = f;

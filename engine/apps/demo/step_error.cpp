@@ -38,6 +38,7 @@ void StepErrorProbe::start(const TvkSimFrame& frame, const host::HairState& befo
                        std::span<const reference::Simulator::Point>(before.previous_previous));
   measured_->advance(frame);
   tracker_->planner().plan(frame);
+  before_ = before;
 }
 
 double StepErrorProbe::finish(const host::HairState& after, uint32_t draw_strands) {
@@ -45,7 +46,10 @@ double StepErrorProbe::finish(const host::HairState& after, uint32_t draw_strand
   // Follow strands above the draw count are not written (tressvk_set_draw_strands): only the written ones compare.
   const size_t written = size_t{asset_.simulated_strands(draw_strands)} * asset_.vertices_per_strand;
   const auto e = reference::position_error(std::span<const std::array<double, 3>>(after.positions).first(written),
-                                           measured_->positions().first(written), measured_->median_strand_length());
+                                           std::span<const std::array<double, 3>>(
+                                               host::held_where_skipped(before_, after, measured_->positions()))
+                                               .first(written),
+                                           measured_->median_strand_length());
   measured_.reset();
   return e.max_rel;
 }

@@ -32,6 +32,7 @@ class StepErrorProbe {
   asset::HairAsset asset_;
   std::unique_ptr<reference::Simulator> tracker_;   // only its planner is used, every frame
   std::unique_ptr<reference::Simulator> measured_;  // the frame being measured
+  host::HairState before_;                          // the state it was loaded with (its sleeping guides held)
 };
 
 }  // namespace tressvk::demo

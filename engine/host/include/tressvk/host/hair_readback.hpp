@@ -8,7 +8,9 @@
 #include <tressvk/engine/sync.hpp>
 #include <tressvk/tressvk.h>
 
+#include <algorithm>
 #include <array>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -72,6 +74,37 @@ inline HairState read_hair_state(const engine::Device& device, TvkInstance insta
     for (size_t v = 0; v < n; ++v)
       s.tangents[strand * n + v] = tangents[element(strand % guides, v)];  // a follow's tangent is its guide's
   return s;
+}
+
+// A reference's positions after a frame (strand by strand, as HairState), with the guides the GPU skipped in that frame
+// held where the GPU holds them. A guide that sleeps (TvkSimSettings::sleep_below) is not simulated: it was asleep as
+// the frame began (its anchor's w at TVK_ASLEEP_QUIET_FRAMES or more) and no vertex of it or of its follow hairs moved.
+// The step error compares what both sides simulated, so the reference holds those guides too; everywhere else it is
+// the reference's own.
+// (P: any point with x, y, z members or three indexed coordinates, such as the reference's Vec3.)
+template <class P>
+std::vector<std::array<double, 3>> held_where_skipped(const HairState& before, const HairState& after,
+                                                    std::span<const P> reference) {
+  std::vector<std::array<double, 3>> out;
+  out.reserve(reference.size());
+  for (const P& p : reference) {
+    if constexpr (requires { p.x; }) out.push_back({p.x, p.y, p.z});
+    else out.push_back({p[0], p[1], p[2]});
+  }
+  const size_t guides = before.anchors.size();
+  if (guides == 0 || before.previous.size() % guides != 0) return out;
+  const size_t n = before.previous.size() / guides;
+  const size_t strands = std::min({before.positions.size(), after.positions.size(), out.size()}) / n;
+  for (size_t g = 0; g < guides; ++g) {
+    if (!(before.anchors[g][3] >= static_cast<float>(TVK_ASLEEP_QUIET_FRAMES))) continue;
+    bool still = true;
+    for (size_t s = g; s < strands && still; s += guides)
+      for (size_t i = s * n; i < (s + 1) * n && still; ++i) still = before.positions[i] == after.positions[i];
+    if (!still) continue;
+    for (size_t s = g; s < strands; s += guides)
+      for (size_t i = s * n; i < (s + 1) * n; ++i) out[i] = after.positions[i];
+  }
+  return out;
 }
 
 }  // namespace tressvk::host
