@@ -199,7 +199,12 @@ typedef struct TvkSimSettings {
                                     capsules, parameters), a guide none of whose vertices moved more than this per
                                     step through 3 frames in a row sleeps: it costs almost nothing and keeps its state
                                     until a frame is not still. A groom at rest under a still head then costs far
-                                    less than a moving one. 0 = never sleep. Default 1e-6 */
+                                    less than a moving one. Once the still frames have lasted long enough for the
+                                    group's damping to bring any motion the inputs gave a strand below this (an
+                                    amplitude keeps exp(-30 * damping * t) of itself: 5.8 s at the default damping),
+                                    a guide that moves less than 1e4 times this per step sleeps too: what it still
+                                    moves is the model's own cycle (follow-the-leader's curls), not motion. No
+                                    damping, no such sleep. 0 = never sleep. Default 1e-6 */
   TvkSimModel model;             /* Default TVK_SIM_MODEL_DEFAULT (follow-the-leader) */
 } TvkSimSettings;
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -316,10 +317,12 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   std::vector<sim::GroupParams> groups(inst.params.size());
   const model::StrandModel strand_model = model::resolve_model(inst.settings.model);
   const bool compliant = model::is_compliant_family(strand_model);
+  double least_damped = 0.0;  // the largest fraction of the velocity a group keeps a step (settled_run below)
   for (size_t g = 0; g < inst.params.size(); ++g) {
     const model::GroupStep step =
         model::to_group_step(model::resolve_params(inst.params[g], strand_model), h,
                              inst.asset->rest.asset_tip_separation, inst.asset->rest.median_length);
+    least_damped = std::max(least_damped, step.velocity_keep);
     groups[g] = compliant ? model::to_gpu_compliant(step, h) : model::to_gpu(step);
     std::memcpy(ring + base + inst.groups_offset + g * sizeof(sim::GroupParams), &groups[g], sizeof(sim::GroupParams));
   }
@@ -350,7 +353,19 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   const bool fused = work.passes.size() == 1 && (work.passes.front().info->id == PassId::kFrame);
   constexpr uint64_t kMeasureEvery = 4;
   inst.still_frames = still ? inst.still_frames + 1 : 0;
-  const float threshold = static_cast<float>(inst.settings.sleep_below * inst.asset->rest.median_length);
+  inst.still_steps = still ? inst.still_steps + work.plan.steps : 0;
+  // A settled still run: long enough for the damping of every group to have taken any motion the inputs gave the
+  // strands below the threshold (an amplitude keeps velocity_keep^(steps / 2) of itself; 5.8 s at the default damping
+  // 0.08). What a strand still moves then is the model's own cycle (follow-the-leader's local shape on curls and on a
+  // few of Ratboy's strands, up to 4.3e-3 of the strand a step: docs/accuracy.md, "At rest"), not motion, so the
+  // threshold grows by kSettledMoveFactor (1e-2 of the median strand a step at the default 1e-6: a strand flying
+  // faster than that stays awake, whatever its cause). Never without damping.
+  constexpr double kSettledMoveFactor = 1e4;
+  const bool settled_run = least_damped < 1.0 && inst.settings.sleep_below > 0.0f &&
+                           0.5 * static_cast<double>(inst.still_steps) * -std::log(least_damped) >=
+                               -std::log(static_cast<double>(inst.settings.sleep_below));
+  const float threshold = static_cast<float>(inst.settings.sleep_below * inst.asset->rest.median_length *
+                                             (settled_run ? kSettledMoveFactor : 1.0));
   work.rest_move = !still || !fused ? 0.0f : inst.still_frames % kMeasureEvery == 1 ? threshold : -threshold;
 
   // Idle instances. In a still frame every guide that runs (is not asleep as the frame starts) sets the frame slot's
