@@ -202,9 +202,9 @@ typedef struct TvkSimSettings {
                                     less than a moving one. Once the still frames have lasted long enough for the
                                     group's damping to bring any motion the inputs gave a strand below this (an
                                     amplitude keeps exp(-30 * damping * t) of itself: 5.8 s at the default damping),
-                                    a guide that moves less than 1e4 times this per step sleeps too: what it still
-                                    moves is the model's own cycle (follow-the-leader's curls), not motion. No
-                                    damping, no such sleep. 0 = never sleep. Default 1e-6 */
+                                    a guide that moves less than 1e-2 of the median strand length per step sleeps
+                                    too: what it still moves is the model's own cycle (follow-the-leader's curls),
+                                    not motion. No damping, no such sleep. 0 = never sleep. Default 1e-6 */
   TvkSimModel model;             /* Default TVK_SIM_MODEL_DEFAULT (follow-the-leader) */
 } TvkSimSettings;
 

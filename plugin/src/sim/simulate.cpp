@@ -358,14 +358,14 @@ TvkResult prepare(Context& ctx, TvkInstance_T& inst, InstanceWork& work, const C
   // strands below the threshold (an amplitude keeps velocity_keep^(steps / 2) of itself; 5.8 s at the default damping
   // 0.08). What a strand still moves then is the model's own cycle (follow-the-leader's local shape on curls and on a
   // few of Ratboy's strands, up to 4.3e-3 of the strand a step: docs/accuracy.md, "At rest"), not motion, so the
-  // threshold grows by kSettledMoveFactor (1e-2 of the median strand a step at the default 1e-6: a strand flying
-  // faster than that stays awake, whatever its cause). Never without damping.
-  constexpr double kSettledMoveFactor = 1e4;
+  // threshold becomes kSettledMove of the median strand a step (sleep_below is at most 1e-3; a strand flying faster
+  // than that stays awake, whatever its cause). Never without damping.
+  constexpr double kSettledMove = 1e-2;
   const bool settled_run = least_damped < 1.0 && inst.settings.sleep_below > 0.0f &&
                            0.5 * static_cast<double>(inst.still_steps) * -std::log(least_damped) >=
                                -std::log(static_cast<double>(inst.settings.sleep_below));
-  const float threshold = static_cast<float>(inst.settings.sleep_below * inst.asset->rest.median_length *
-                                             (settled_run ? kSettledMoveFactor : 1.0));
+  const double below = settled_run ? kSettledMove : static_cast<double>(inst.settings.sleep_below);
+  const float threshold = static_cast<float>(below * inst.asset->rest.median_length);
   work.rest_move = !still || !fused ? 0.0f : inst.still_frames % kMeasureEvery == 1 ? threshold : -threshold;
 
   // Idle instances. In a still frame every guide that runs (is not asleep as the frame starts) sets the frame slot's
