@@ -69,7 +69,7 @@ struct TvkInstance_T {
   std::array<double, 3> sim_origin{};
   std::vector<std::byte> last_step_inputs;  // what the last step run saw (simulate.cpp: a frame is still or not)
   uint64_t still_frames = 0;                // still frames in a row
-  uint64_t still_steps = 0;                 // the steps those frames ran (layout.glsl, group_settled)
+  uint64_t still_steps = 0;                 // the steps those frames ran (simulate.cpp: a settled still run)
   // Idle instances (simulate.cpp): the first frame of the current still run, and per frame slot the frame (+ 1; 0:
   // none) whose still dispatch the slot's awake word answers for; idle: every guide asleep and nothing moved since.
   uint64_t still_run_first = 0;
