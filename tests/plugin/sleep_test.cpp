@@ -233,9 +233,9 @@ TEST_CASE("an instance whose every guide sleeps records no dispatch until a fram
 
 // Strands that never come to rest (follow-the-leader's local shape keeps a limit cycle on curls at 2 iterations,
 // docs/accuracy.md "At rest") still sleep once the still run has lasted long enough for their group's damping to take
-// any motion the inputs gave them below the threshold (layout.glsl, group_settled: an amplitude keeps
-// velocity_keep^(steps / 2), so at the default damping 0.08 that is 2 ln(1e6) / (0.08 * 60 / 30) = 5.76 s), and what
-// they still move then is the model's own. Without damping nothing is forced.
+// any motion the inputs gave them below the threshold (simulate.cpp, a settled still run: an amplitude keeps
+// velocity_keep^(steps / 2) = exp(-30 damping t), so at the default damping 0.08 that is ln(1e6) / (30 * 0.08) =
+// 5.76 s), and what they still move then is the model's own. Without damping nothing is forced.
 TEST_CASE("a still groom whose strands never rest sleeps once its damping has settled it", "[plugin][simulation]") {
   baker::BuiltinGroomOptions options;
   options.guide_count = 8;
@@ -271,7 +271,7 @@ TEST_CASE("a still groom whose strands never rest sleeps once its damping has se
   };
   run_to(kBefore);
   const size_t asleep_before = asleep(gpu.state());
-  // Until then only the motion rule sleeps a guide: the same guides as a twin that measured the same motion would.
+  // Until then only the motion rule sleeps a guide, so the instance still follows its never-sleeping twin (reported).
   const auto before_settled = reference::position_error(guides(gpu.state().pos), guides(awake.state().pos), median);
   run_to(kAfter);
   const size_t asleep_after = asleep(gpu.state());

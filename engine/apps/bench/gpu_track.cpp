@@ -56,10 +56,9 @@ TrackResult track(const engine::Device& dev, TvkContext ctx, const asset::HairAs
       state = host::read_hair_state(dev, inst);
       const std::span<const std::array<double, 3>> pos(state.positions);
       if (opt.step_error) {
-        // Guides the GPU skipped (asleep) held in the reference too; the first frame has no state before it.
-        const std::vector<std::array<double, 3>> expected =
-            have_state ? host::held_where_skipped(before, state, ref.positions())
-                       : host::held_where_skipped(host::HairState{}, state, ref.positions());
+        // Guides the GPU skipped (asleep) held in the reference too; before the first read `before` is empty and
+        // holds nothing.
+        const std::vector<std::array<double, 3>> expected = host::held_where_skipped(before, state, ref.positions());
         const auto e = reference::position_error(pos, std::span<const std::array<double, 3>>(expected),
                                                  out.median_strand_length);
         out.step_error_max_rel = std::max(out.step_error_max_rel, e.max_rel);
