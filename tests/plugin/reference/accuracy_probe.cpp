@@ -1,7 +1,7 @@
 // Prints the model-accuracy numbers docs/accuracy.md quotes, from the double reference: the hanging chain's period and
 // decay per period (N x step rate x length sweeps), the cantilever's tip sag (N x step rate x local iterations) and
 // the convergence of a shaken strand's trajectory as the step rate doubles. A diagnostic, not a test.
-//   tressvk_accuracy_probe [chain|cantilever|convergence|rest|looks|perturb|upright|stretch]...
+//   tressvk_accuracy_probe [chain|cantilever|convergence|rest|looks|perturb|upright|stretch|drift]...
 // perturb / upright: the growth of a small perturbation of the initial state (rounding amplification; docs/accuracy.md).
 // Environment: TVK_LENGTH_MODEL=newmark | compliant | conservative (the reference's models; default
 // follow-the-leader); for `rest`, TVK_LOCAL / TVK_GLOBAL (stiffness) and TVK_LIT (local iterations) override the
@@ -360,6 +360,67 @@ void stretch_probe() {
 
 }  // namespace
 
+// Uniform motion: each built-in groom (64 guides x 32; the Ratboy mohawk where TVK_RATBOY names it) settled 5 s under a
+// still head, then carried forward (+z) at a speed that ramps smoothly to TVK_SPEED m/s (default 1.5, a walk) over
+// 1 s and holds it for 5 s, head still otherwise. Prints how far the hair then sits from its settled shape, seen from
+// the head (positions less the head's move; rms and max over the guide vertices, / median strand length) and the mean
+// tip's move backwards (-z, / median length): the model's damping acts on world velocity, so uniform motion is not
+// rest in it (an air drag of about damping x 60 per second times the speed).
+void drift() {
+  const double speed = std::getenv("TVK_SPEED") ? std::atof(std::getenv("TVK_SPEED")) : 1.5;
+  std::printf("groom,speed_m_s,rms_rel,max_rel,tip_back_rel\n");
+  std::vector<std::pair<std::string, tressvk::asset::HairAsset>> grooms;
+  for (const std::string& name : tressvk::baker::builtin_groom_names()) grooms.emplace_back(name, tvk_test::groom(name, 64));
+  if (const char* path = std::getenv("TVK_RATBOY")) {
+    tressvk::baker::RawGroom raw = tressvk::baker::import_file(path);
+    std::string bones = path;
+    bones = bones.substr(0, bones.size() - 4) + ".tfxbone";
+    if (std::FILE* f = std::fopen(bones.c_str(), "rb")) {
+      std::fclose(f);
+      tressvk::baker::apply_tfxbone(raw, bones);
+    }
+    grooms.emplace_back("ratboy", tressvk::baker::bake(raw, tressvk::baker::BakeOptions{}));
+  }
+  for (const auto& [name, a] : grooms) {
+    tressvk::reference::Simulator sim = tvk_test::make_sim(a);
+    sim.set_model(g_model);
+    const auto geo = tressvk::reference::scene_geometry(sim.rest());
+    const size_t count = sim.rest().rest_pos.size();
+    const uint32_t n = sim.rest().vertices_per_strand;
+    // Positions seen from the head: less the skinned rest root of their strand (simulation space follows the head).
+    const auto from_head = [&](const tressvk::reference::FramePlan& plan) {
+      std::vector<Vec3> out(count);
+      for (size_t i = 0; i < count; ++i) out[i] = sim.positions()[i] - sim.skinned_rest(plan.steps.back(), i - i % n);
+      return out;
+    };
+    tressvk::reference::FramePlan plan;
+    for (uint32_t f = 0; f < 300; ++f) plan = sim.advance(tressvk::reference::scene_frame("settle", f, geo));
+    const std::vector<Vec3> settled = from_head(plan);
+    double z = 0;
+    const double dt = tressvk::reference::kSceneFrameDt;
+    for (uint32_t f = 0; f < 360; ++f) {
+      const double t = (f + 1) * dt;
+      const double v = t < 1.0 ? speed * 0.5 * (1.0 - std::cos(3.141592653589793 * t)) : speed;
+      z += v * dt;
+      TvkSimFrame fr = tressvk::reference::scene_frame("settle", 300 + f, geo);
+      fr.transform.translation[2] += z;
+      plan = sim.advance(fr);
+    }
+    const std::vector<Vec3> moving = from_head(plan);
+    double sum = 0, worst = 0, back = 0;
+    for (size_t i = 0; i < count; ++i) {
+      const Vec3 p = moving[i];
+      const double d = length(p - settled[i]);
+      sum += d * d;
+      worst = std::max(worst, d);
+      if (i % n == n - 1) back += settled[i].z - p.z;
+    }
+    const double median = sim.median_strand_length();
+    std::printf("%s,%.3f,%.4f,%.4f,%.4f\n", name.c_str(), speed, std::sqrt(sum / static_cast<double>(count)) / median,
+                worst / median, back / static_cast<double>(count / n) / median);
+  }
+}
+
 int main(int argc, char** argv) {
   if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "newmark") == 0) g_model = LengthModel::kNewmark;
   if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "compliant") == 0) g_model = LengthModel::kCompliant;
@@ -372,6 +433,7 @@ int main(int argc, char** argv) {
     if (all || std::strcmp(what, "convergence") == 0) convergence();
     if (std::strcmp(what, "rest") == 0) rest();
     if (std::strcmp(what, "looks") == 0) looks();
+    if (std::strcmp(what, "drift") == 0) drift();
     if (std::strcmp(what, "perturb") == 0) perturb();
     if (std::strcmp(what, "upright") == 0) upright();
     if (std::strcmp(what, "stretch") == 0) stretch_probe();
