@@ -141,13 +141,9 @@ void rest() {
   }
 }
 
-// The look of the grooms at the defaults: every built-in groom (64 guides x 32) and, when TVK_RATBOY names
-// Ratboy_mohawk.tfx, the Ratboy mohawk (bones from the .tfxbone beside it, baked as tressvk-bake does by default),
-// settled 5 s (settle scene, gravity on) on the follow-the-leader and the compliant model: the distance between the two
-// settled shapes (rms and max over the guide vertices, / median strand length) and each one's mean tip drop below its
-// rest tip (/ median length).
-void looks() {
-  std::printf("groom,guides,rms_rel,max_rel,tip_drop_ftl_rel,tip_drop_compliant_rel\n");
+// Every built-in groom (64 guides x 32) and, when TVK_RATBOY names Ratboy_mohawk.tfx, the Ratboy mohawk (bones from
+// the .tfxbone beside it, baked as tressvk-bake does by default).
+std::vector<std::pair<std::string, tressvk::asset::HairAsset>> probe_grooms() {
   std::vector<std::pair<std::string, tressvk::asset::HairAsset>> grooms;
   for (const std::string& name : tressvk::baker::builtin_groom_names()) grooms.emplace_back(name, tvk_test::groom(name, 64));
   if (const char* path = std::getenv("TVK_RATBOY")) {
@@ -160,6 +156,17 @@ void looks() {
     }
     grooms.emplace_back("ratboy", tressvk::baker::bake(raw, tressvk::baker::BakeOptions{}));
   }
+  return grooms;
+}
+
+// The look of the grooms at the defaults: every built-in groom (64 guides x 32) and, when TVK_RATBOY names
+// Ratboy_mohawk.tfx, the Ratboy mohawk (bones from the .tfxbone beside it, baked as tressvk-bake does by default),
+// settled 5 s (settle scene, gravity on) on the follow-the-leader and the compliant model: the distance between the two
+// settled shapes (rms and max over the guide vertices, / median strand length) and each one's mean tip drop below its
+// rest tip (/ median length).
+void looks() {
+  std::printf("groom,guides,rms_rel,max_rel,tip_drop_ftl_rel,tip_drop_compliant_rel\n");
+  const auto grooms = probe_grooms();
   for (const auto& [name, a] : grooms) {
     std::vector<Vec3> settled[2];
     double drop[2] = {0, 0}, median = 0;
@@ -369,18 +376,7 @@ void stretch_probe() {
 void drift() {
   const double speed = std::getenv("TVK_SPEED") ? std::atof(std::getenv("TVK_SPEED")) : 1.5;
   std::printf("groom,speed_m_s,rms_rel,max_rel,tip_back_rel\n");
-  std::vector<std::pair<std::string, tressvk::asset::HairAsset>> grooms;
-  for (const std::string& name : tressvk::baker::builtin_groom_names()) grooms.emplace_back(name, tvk_test::groom(name, 64));
-  if (const char* path = std::getenv("TVK_RATBOY")) {
-    tressvk::baker::RawGroom raw = tressvk::baker::import_file(path);
-    std::string bones = path;
-    bones = bones.substr(0, bones.size() - 4) + ".tfxbone";
-    if (std::FILE* f = std::fopen(bones.c_str(), "rb")) {
-      std::fclose(f);
-      tressvk::baker::apply_tfxbone(raw, bones);
-    }
-    grooms.emplace_back("ratboy", tressvk::baker::bake(raw, tressvk::baker::BakeOptions{}));
-  }
+  const auto grooms = probe_grooms();
   for (const auto& [name, a] : grooms) {
     tressvk::reference::Simulator sim = tvk_test::make_sim(a);
     sim.set_model(g_model);
