@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <numbers>
 
 #include <tressvk/baker/import.hpp>
 #include <tressvk/baker/procedural.hpp>
@@ -365,14 +366,12 @@ void stretch_probe() {
   std::printf("worst,%.3e\n", worst);
 }
 
-}  // namespace
-
 // Uniform motion: each built-in groom (64 guides x 32; the Ratboy mohawk where TVK_RATBOY names it) settled 5 s under a
 // still head, then carried forward (+z) at a speed that ramps smoothly to TVK_SPEED m/s (default 1.5, a walk) over
 // 1 s and holds it for 5 s, head still otherwise. Prints how far the hair then sits from its settled shape, seen from
-// the head (positions less the head's move; rms and max over the guide vertices, / median strand length) and the mean
-// tip's move backwards (-z, / median length): the model's damping acts on world velocity, so uniform motion is not
-// rest in it (an air drag of about damping x 60 per second times the speed).
+// the head (each vertex less its strand's skinned root; rms and max over the guide vertices, / median strand length)
+// and the mean tip's move backwards (-z, / median length): the model's damping acts on world velocity, so uniform
+// motion is not rest in it (an air drag of about damping x 60 per second times the speed).
 void drift() {
   const double speed = std::getenv("TVK_SPEED") ? std::atof(std::getenv("TVK_SPEED")) : 1.5;
   std::printf("groom,speed_m_s,rms_rel,max_rel,tip_back_rel\n");
@@ -396,7 +395,7 @@ void drift() {
     const double dt = tressvk::reference::kSceneFrameDt;
     for (uint32_t f = 0; f < 360; ++f) {
       const double t = (f + 1) * dt;
-      const double v = t < 1.0 ? speed * 0.5 * (1.0 - std::cos(3.141592653589793 * t)) : speed;
+      const double v = t < 1.0 ? speed * 0.5 * (1.0 - std::cos(std::numbers::pi * t)) : speed;
       z += v * dt;
       TvkSimFrame fr = tressvk::reference::scene_frame("settle", 300 + f, geo);
       fr.transform.translation[2] += z;
@@ -416,6 +415,8 @@ void drift() {
                 worst / median, back / static_cast<double>(count / n) / median);
   }
 }
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (const char* m = std::getenv("TVK_LENGTH_MODEL"); m && std::strcmp(m, "newmark") == 0) g_model = LengthModel::kNewmark;
